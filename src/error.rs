@@ -1,0 +1,98 @@
+//! One error type for the whole crate, grouped by whose fault it is.
+
+use std::fmt;
+use std::path::PathBuf;
+
+/// Where in an input a problem was found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Location {
+    /// 1-based line of a text file.
+    Line(u64),
+    /// 0-based byte offset into a binary file or section.
+    Byte(u64),
+    /// The problem concerns the input as a whole.
+    Whole,
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Location::Line(l) => write!(f, "line {l}"),
+            Location::Byte(b) => write!(f, "byte offset {b}"),
+            Location::Whole => f.write_str("file"),
+        }
+    }
+}
+
+/// A malformed input file: which format, where, and what is wrong.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ParseError {
+    /// The file, when the input came from one.
+    pub file: Option<PathBuf>,
+    /// The format being read, such as `"OFF"`.
+    pub format: &'static str,
+    /// Where the problem is.
+    pub location: Location,
+    /// What is wrong, in words.
+    pub message: String,
+}
+
+impl fmt::Display for ParseError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match &self.file {
+            Some(p) => write!(f, "{}: ", p.display())?,
+            None => write!(f, "<{} input>: ", self.format)?,
+        }
+        write!(f, "{} {}: {}", self.format, self.location, self.message)
+    }
+}
+
+/// Every error the crate returns.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// Reading or writing a file failed.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file concerned.
+        path: PathBuf,
+        /// The underlying error.
+        source: std::io::Error,
+    },
+    /// An input file is malformed.
+    #[error("{0}")]
+    Parse(Box<ParseError>),
+    /// The file's format could not be told from its name or content.
+    #[error("{}: {reason}", path.display())]
+    UnknownFormat {
+        /// The file concerned.
+        path: PathBuf,
+        /// Why the format is unknown.
+        reason: String,
+    },
+    /// A mesh handed to the library breaks the mesh invariants (see [`crate::Mesh::validate`]).
+    #[error("invalid mesh: {0}")]
+    InvalidMesh(String),
+}
+
+impl Error {
+    /// Attaches a file name to a parse error that was produced from bytes alone.
+    pub fn with_file(self, path: &std::path::Path) -> Error {
+        match self {
+            Error::Parse(mut e) => {
+                e.file = Some(path.to_path_buf());
+                Error::Parse(e)
+            }
+            other => other,
+        }
+    }
+}
+
+impl From<ParseError> for Error {
+    fn from(e: ParseError) -> Self {
+        Error::Parse(Box::new(e))
+    }
+}
+
+/// The crate's result type.
+pub type Result<T, E = Error> = std::result::Result<T, E>;

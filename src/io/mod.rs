@@ -1,0 +1,1 @@
+//! Mesh importers and exporters: OBJ, OFF, PLY, STL.
