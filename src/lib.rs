@@ -1,12 +1,26 @@
 //! lrmesh: compact, random-access connectivity for triangle meshes.
+//!
+//! The crate reads and writes indexed triangle meshes ([`io`]), builds a corner table for any
+//! triangle set, however broken ([`corner_table`]), reports its topology ([`topology`]), and
+//! offers the standard corner operators through one trait ([`ops::CornerOps`]) that every
+//! connectivity representation implements.
+//!
+//! No input makes the library panic: malformed files and meshes give an [`Error`].
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
+pub mod corner_table;
 pub mod error;
+pub mod generate;
 pub mod ids;
 pub mod io;
 pub mod mesh;
+pub mod ops;
+pub mod topology;
 
+pub use corner_table::CornerTable;
 pub use error::{Error, Location, ParseError, Result};
 pub use ids::{Corner, Triangle, Vertex};
 pub use mesh::Mesh;
+pub use ops::CornerOps;
+pub use topology::TopologyReport;

@@ -1,0 +1,72 @@
+//! Checks shared by the integration tests.
+#![allow(dead_code)]
+
+use lrmesh::ops::{self, CornerOps};
+use lrmesh::{Corner, CornerTable, Mesh, TopologyReport};
+use std::collections::BTreeSet;
+use std::path::PathBuf;
+
+/// The repository's corpus of meshes.
+pub fn corpus_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("corpus/meshes")
+}
+
+/// The team's shared meshes, when this checkout sits beside them.
+pub fn shared_dir() -> Option<PathBuf> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes");
+    dir.join("MANIFEST.tsv").exists().then_some(dir)
+}
+
+/// Builds the corner table of `mesh` and checks every invariant the crate promises:
+/// `c.o.o == c`; `c.o` faces the reversed edge of `c` from another triangle; swinging from
+/// `v.c` visits exactly the corners of `v` (one fan per vertex); copies map to input vertices;
+/// the map back gives the input triangles exactly; cut edges are counted as the report counts
+/// them.
+pub fn check_corner_table(mesh: &Mesh) -> CornerTable {
+    let table = CornerTable::from_mesh(mesh).expect("corner table");
+    assert_eq!(table.input_triangles(), mesh.triangles, "map back to the input");
+
+    let mut corners_of = vec![BTreeSet::new(); table.vertex_id_bound() as usize];
+    for c in table.corners() {
+        corners_of[table.vertex(c).idx()].insert(c);
+        assert_eq!(table.next(table.prev(c)), c);
+        assert_eq!(table.triangle(table.next(c)), table.triangle(c));
+        if let Some(o) = table.opposite(c) {
+            assert_eq!(table.opposite(o), Some(c), "c.o.o == c at {c:?}");
+            assert_ne!(table.triangle(o), table.triangle(c));
+            assert_eq!(table.vertex(table.next(o)), table.vertex(table.prev(c)));
+            assert_eq!(table.vertex(table.prev(o)), table.vertex(table.next(c)));
+        }
+        if let Some(s) = table.swing(c) {
+            assert_eq!(table.vertex(s), table.vertex(c));
+            assert_eq!(table.unswing(s), Some(c));
+        }
+    }
+    for v in table.vertices() {
+        let star: Vec<Corner> = ops::star(&table, v).collect();
+        let unique: BTreeSet<Corner> = star.iter().copied().collect();
+        assert_eq!(unique.len(), star.len(), "star of {v:?} repeats a corner");
+        assert_eq!(unique, corners_of[v.idx()], "star of {v:?} is not its fan");
+        if let Some(c) = table.vertex_corner(v) {
+            assert_eq!(table.vertex(c), v);
+        }
+        let original = table.original_vertex(v);
+        assert!(original.0 < table.input_vertex_count());
+        if v.0 < table.input_vertex_count() {
+            assert_eq!(original, v);
+        } else {
+            assert!(!corners_of[v.idx()].is_empty(), "a copy without corners");
+        }
+    }
+    let report = TopologyReport::of(mesh);
+    let conversion = table.conversion();
+    assert_eq!(conversion.kept_aside as u64, report.degenerate_triangles);
+    if report.degenerate_triangles == 0 {
+        assert_eq!(conversion.cut_nonmanifold_edges as u64, report.nonmanifold_edges);
+        assert_eq!(conversion.cut_inconsistent_edges as u64, report.inconsistent_edges);
+    }
+    if report.vertex_manifold && report.oriented && report.degenerate_triangles == 0 {
+        assert_eq!(conversion.vertex_copies, 0);
+    }
+    table
+}
