@@ -37,6 +37,18 @@ pub struct ParseError {
     pub message: String,
 }
 
+impl ParseError {
+    /// A parse error not yet tied to a file; [`Error::with_file`] adds the file name later.
+    pub fn new(format: &'static str, location: Location, message: impl Into<String>) -> ParseError {
+        ParseError {
+            file: None,
+            format,
+            location,
+            message: message.into(),
+        }
+    }
+}
+
 impl fmt::Display for ParseError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match &self.file {

@@ -1,1 +1,306 @@
 //! Mesh importers and exporters: OBJ, OFF, PLY, STL.
+//!
+//! Every reader follows the same rules:
+//!
+//! - **Vertex identity is the file's.** One mesh vertex per vertex record, in file order;
+//!   unreferenced vertices are kept and nothing is merged (STL, which has no shared vertices,
+//!   merges bit-identical corners only when asked, see [`ReadOptions::weld`]).
+//! - **Polygons are fan-triangulated** in file order: `(v0, v1, ..., vk)` gives
+//!   `(v0, vi, vi+1)`. Repeated vertices inside a polygon are kept, so degenerate triangles
+//!   survive; no triangle is dropped or reordered. A face with fewer than 3 vertices is an error.
+//! - **Bad input is a [`ParseError`]** naming the format, the 1-based line (text) or byte
+//!   offset from the start of the file (binary) and the problem: an index out of range, a count
+//!   the file cannot hold, a truncated body, a NaN or infinite coordinate, normal or texture
+//!   coordinate, an unparsable number, an unsupported header item. No input makes a reader
+//!   panic or hang, and no allocation is sized by a header count that the bytes present cannot
+//!   back. Things that are read but not used (skipped PLY properties, OBJ seams, trailing
+//!   content) are reported in [`Loaded::warnings`].
+//! - Vertex and triangle counts stay inside the limits of [`Mesh::validate`], so a mesh that
+//!   a reader returns always validates.
+//!
+//! Colors given as numbers in `0..=1` are scaled to `0..=255` with `(c * 255).round()` after
+//! clamping; the format modules say when a color counts as such a fraction.
+//!
+//! The writers produce files that the readers read back to an equal [`Mesh`]: floats are
+//! written in the shortest form that parses back to the same bits (including `-0` and
+//! subnormals).
+
+mod lex;
+pub mod obj;
+pub mod off;
+pub mod ply;
+pub mod stl;
+
+use std::fmt;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use crate::error::{Error, Location, ParseError, Result};
+use crate::mesh::Mesh;
+
+/// A mesh file format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeshFormat {
+    /// Wavefront OBJ (text).
+    Obj,
+    /// Object File Format (text), with the `ST`, `C` and `N` prefixes of Geomview.
+    Off,
+    /// Polygon File Format, ASCII or binary of either byte order.
+    Ply,
+    /// Stereolithography, ASCII or binary.
+    Stl,
+}
+
+impl MeshFormat {
+    /// The format named by a file's extension (`.obj`, `.off`, `.ply`, `.stl`, in any case).
+    ///
+    /// # Errors
+    /// [`Error::UnknownFormat`] when the extension is missing or not one of those.
+    pub fn from_path(path: &Path) -> Result<MeshFormat> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        match ext.as_deref() {
+            Some("obj") => Ok(MeshFormat::Obj),
+            Some("off") => Ok(MeshFormat::Off),
+            Some("ply") => Ok(MeshFormat::Ply),
+            Some("stl") => Ok(MeshFormat::Stl),
+            Some(other) => Err(Error::UnknownFormat {
+                path: path.to_path_buf(),
+                reason: format!("unknown extension `.{other}`; expected .obj, .off, .ply or .stl"),
+            }),
+            None => Err(Error::UnknownFormat {
+                path: path.to_path_buf(),
+                reason: "no file extension; expected .obj, .off, .ply or .stl".to_string(),
+            }),
+        }
+    }
+
+    /// The format's name as used in error messages, such as `"OFF"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            MeshFormat::Obj => "OBJ",
+            MeshFormat::Off => "OFF",
+            MeshFormat::Ply => "PLY",
+            MeshFormat::Stl => "STL",
+        }
+    }
+}
+
+impl fmt::Display for MeshFormat {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Options for the readers.
+#[derive(Debug, Clone, Default)]
+pub struct ReadOptions {
+    /// STL only: merge corners whose positions are bit-identical (with `-0.0` equal to `0.0`)
+    /// into one vertex, numbered in order of first appearance. Without it every triangle
+    /// corner of an STL file is a vertex of its own.
+    pub weld: bool,
+}
+
+/// A mesh read from a file, with what the reader noticed but did not refuse.
+#[derive(Debug, Clone)]
+pub struct Loaded {
+    /// The mesh.
+    pub mesh: Mesh,
+    /// Human-readable notes about data that was skipped or adjusted, one per kind of issue.
+    pub warnings: Vec<String>,
+}
+
+/// Reads a mesh file, choosing the format by the file's extension.
+///
+/// # Errors
+/// [`Error::UnknownFormat`] for an unknown extension, [`Error::Io`] when the file cannot be
+/// read, [`Error::Parse`] (with the file name attached) when it is malformed.
+pub fn read_mesh(path: &Path, opts: &ReadOptions) -> Result<Loaded> {
+    let format = MeshFormat::from_path(path)?;
+    let bytes = std::fs::read(path).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    read_mesh_bytes(&bytes, format, opts).map_err(|e| e.with_file(path))
+}
+
+/// Reads a mesh from the bytes of a file in the given format.
+///
+/// # Errors
+/// [`Error::Parse`] when the bytes are not a valid file of that format.
+pub fn read_mesh_bytes(bytes: &[u8], format: MeshFormat, opts: &ReadOptions) -> Result<Loaded> {
+    let loaded = match format {
+        MeshFormat::Obj => obj::read(bytes, opts),
+        MeshFormat::Off => off::read(bytes, opts),
+        MeshFormat::Ply => ply::read(bytes, opts),
+        MeshFormat::Stl => stl::read(bytes, opts),
+    }?;
+    debug_assert!(loaded.mesh.validate().is_ok());
+    Ok(loaded)
+}
+
+/// Writes a mesh to a file, choosing the format by the file's extension: OBJ, OFF or binary
+/// little-endian PLY.
+///
+/// # Errors
+/// [`Error::UnknownFormat`] for an unknown extension or `.stl` (writing STL, which cannot keep
+/// shared vertices, is only offered by [`stl::write_binary`] and [`stl::write_ascii`]);
+/// [`Error::InvalidMesh`] when the mesh does not validate; [`Error::Io`] when writing fails.
+pub fn write_mesh(path: &Path, mesh: &Mesh) -> Result<()> {
+    let format = MeshFormat::from_path(path)?;
+    if format == MeshFormat::Stl {
+        return Err(stl_write_unsupported(path));
+    }
+    mesh.validate()?;
+    let io_err = |source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let file = std::fs::File::create(path).map_err(io_err)?;
+    write_format(file, mesh, format).map_err(io_err)
+}
+
+/// Writes a mesh in the given format (OBJ, OFF or binary little-endian PLY) to a writer.
+///
+/// # Errors
+/// [`Error::UnknownFormat`] for [`MeshFormat::Stl`]; [`Error::InvalidMesh`] when the mesh does
+/// not validate; [`Error::Io`] (with the path `<output>`) when writing fails.
+pub fn write_mesh_to<W: Write>(w: W, mesh: &Mesh, format: MeshFormat) -> Result<()> {
+    if format == MeshFormat::Stl {
+        return Err(stl_write_unsupported(Path::new("<output>")));
+    }
+    mesh.validate()?;
+    write_format(w, mesh, format).map_err(|source| Error::Io {
+        path: PathBuf::from("<output>"),
+        source,
+    })
+}
+
+fn write_format<W: Write>(w: W, mesh: &Mesh, format: MeshFormat) -> std::io::Result<()> {
+    match format {
+        MeshFormat::Obj => obj::write(w, mesh),
+        MeshFormat::Off => off::write(w, mesh),
+        MeshFormat::Ply => ply::write(w, mesh),
+        MeshFormat::Stl => stl::write_binary(w, mesh),
+    }
+}
+
+fn stl_write_unsupported(path: &Path) -> Error {
+    Error::UnknownFormat {
+        path: path.to_path_buf(),
+        reason: "writing STL is not supported by write_mesh (STL cannot keep shared vertices); \
+                 use lrmesh::io::stl::write_binary"
+            .to_string(),
+    }
+}
+
+/// Largest vertex count a reader may produce (see [`Mesh::validate`]).
+pub(crate) const MAX_VERTICES: u64 = u32::MAX as u64 - 1;
+/// Largest triangle count a reader may produce (see [`Mesh::validate`]).
+pub(crate) const MAX_TRIANGLES: u64 = (u32::MAX / 3) as u64 - 1;
+
+/// A parse error as an [`Error`].
+pub(crate) fn perr(format: &'static str, location: Location, message: impl Into<String>) -> Error {
+    Error::from(ParseError::new(format, location, message))
+}
+
+/// Appends the fan triangulation of `poly` to `tris`. `poly` has at least 3 vertices.
+///
+/// # Errors
+/// A message when the triangle count would pass [`MAX_TRIANGLES`].
+pub(crate) fn push_fan(tris: &mut Vec<[u32; 3]>, poly: &[u32]) -> Result<(), String> {
+    debug_assert!(poly.len() >= 3);
+    let new = poly.len().saturating_sub(2) as u64;
+    if tris.len() as u64 + new > MAX_TRIANGLES {
+        return Err(format!(
+            "the mesh would have more than {MAX_TRIANGLES} triangles"
+        ));
+    }
+    let v0 = poly[0];
+    tris.extend(poly[1..].windows(2).map(|w| [v0, w[0], w[1]]));
+    Ok(())
+}
+
+/// A color channel given as a fraction in `0..=1` (clamped) as an 8-bit value.
+pub(crate) fn unit_to_u8(x: f64) -> u8 {
+    (x.clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
+/// An 8-bit color channel as the fraction that [`unit_to_u8`] maps back to it.
+pub(crate) fn u8_to_unit(c: u8) -> f32 {
+    f32::from(c) / 255.0
+}
+
+/// Formats an `f32` in the shortest text that parses back to the same bits: plain decimal for
+/// ordinary magnitudes, scientific notation for very large and very small ones.
+pub(crate) struct Float(pub f32);
+
+impl fmt::Display for Float {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let a = self.0.abs();
+        if a == 0.0 || (1e-5..1e7).contains(&a) {
+            write!(f, "{}", self.0)
+        } else {
+            write!(f, "{:e}", self.0)
+        }
+    }
+}
+
+/// Checks a mesh before a format writer indexes into it, so that a writer handed an invalid
+/// mesh returns an error instead of panicking.
+pub(crate) fn check_writable(mesh: &Mesh) -> std::io::Result<()> {
+    mesh.validate()
+        .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidInput, e.to_string()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn float_text_round_trips() {
+        let xs = [
+            0.0f32,
+            -0.0,
+            1.0,
+            -1.5,
+            0.1,
+            1e-5,
+            9.999_999e-6,
+            1e7,
+            f32::MAX,
+            f32::MIN_POSITIVE,
+            1e-45,
+            -3.4e-40,
+            123_456.79,
+        ];
+        for x in xs {
+            let s = Float(x).to_string();
+            let y: f32 = s.parse().unwrap();
+            assert_eq!(x.to_bits(), y.to_bits(), "{x} written as {s}");
+        }
+        assert_eq!(Float(-0.0).to_string(), "-0");
+        assert_eq!(Float(1e-45).to_string(), "1e-45");
+    }
+
+    #[test]
+    fn colors_round_trip() {
+        for c in 0..=255u8 {
+            assert_eq!(unit_to_u8(f64::from(u8_to_unit(c))), c);
+            let s = Float(u8_to_unit(c)).to_string();
+            assert_eq!(unit_to_u8(s.parse::<f32>().unwrap().into()), c);
+        }
+    }
+
+    #[test]
+    fn format_from_path() {
+        assert_eq!(
+            MeshFormat::from_path(Path::new("a/B.OfF")).unwrap(),
+            MeshFormat::Off
+        );
+        assert!(MeshFormat::from_path(Path::new("a/b")).is_err());
+        assert!(MeshFormat::from_path(Path::new("a/b.gltf")).is_err());
+    }
+}
