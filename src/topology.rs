@@ -286,3 +286,40 @@ fn zero_area(p: [[f32; 3]; 3]) -> bool {
     ];
     n == [0.0; 3]
 }
+
+impl std::fmt::Display for TopologyReport {
+    /// One `name: value` line per figure, in the order of the JSON keys.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let genus = self
+            .genus
+            .map_or_else(|| "undefined".to_string(), |g| g.to_string());
+        let rows: [(&str, String); 22] = [
+            ("vertices", self.vertices.to_string()),
+            ("triangles", self.triangles.to_string()),
+            ("edges", self.edges.to_string()),
+            ("boundary edges", self.boundary_edges.to_string()),
+            ("boundary loops", self.boundary_loops.to_string()),
+            ("components", self.components.to_string()),
+            ("euler characteristic", self.euler.to_string()),
+            ("genus", genus),
+            ("non-manifold edges", self.nonmanifold_edges.to_string()),
+            ("non-manifold vertices", self.nonmanifold_vertices.to_string()),
+            ("inconsistently oriented edges", self.inconsistent_edges.to_string()),
+            ("degenerate triangles", self.degenerate_triangles.to_string()),
+            ("zero-area triangles", self.zero_area_triangles.to_string()),
+            ("duplicate triangles", self.duplicate_triangles.to_string()),
+            ("duplicate positions", self.duplicate_positions.to_string()),
+            ("unreferenced vertices", self.unreferenced_vertices.to_string()),
+            ("edge-manifold", self.edge_manifold.to_string()),
+            ("vertex-manifold", self.vertex_manifold.to_string()),
+            ("oriented", self.oriented.to_string()),
+            ("valence-6 vertices", format!("{:.2}%", self.valence6_pct)),
+            ("mean valence", format!("{:.3}", self.mean_valence)),
+            ("max valence", self.max_valence.to_string()),
+        ];
+        for (name, value) in rows {
+            writeln!(f, "{name:<30} {value}")?;
+        }
+        Ok(())
+    }
+}
