@@ -97,7 +97,8 @@ impl<'a> Tokens<'a> {
         }
     }
 
-    fn skip_space(&mut self) {
+    /// Skips white space, so that [`Tokens::line`] is the line of the next token.
+    pub(crate) fn skip_space(&mut self) {
         while let Some(&b) = self.bytes.get(self.pos) {
             if !b.is_ascii_whitespace() {
                 break;
@@ -165,21 +166,6 @@ pub(crate) fn parse_f32(tok: &[u8], what: &str) -> Result<f32, String> {
     finite(v, tok, what)
 }
 
-/// Parses a finite `f64`.
-pub(crate) fn parse_f64(tok: &[u8], what: &str) -> Result<f64, String> {
-    let v: f64 = std::str::from_utf8(tok)
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .ok_or_else(|| format!("{what} `{}` is not a number", show(tok)))?;
-    if v.is_nan() {
-        Err(format!("{what} is NaN (`{}`)", show(tok)))
-    } else if v.is_infinite() {
-        Err(format!("{what} `{}` is infinite", show(tok)))
-    } else {
-        Ok(v)
-    }
-}
-
 fn finite(v: f32, tok: &[u8], what: &str) -> Result<f32, String> {
     if v.is_nan() {
         Err(format!("{what} is NaN (`{}`)", show(tok)))
@@ -191,6 +177,14 @@ fn finite(v: f32, tok: &[u8], what: &str) -> Result<f32, String> {
     } else {
         Ok(v)
     }
+}
+
+/// Parses any number the standard library parses, NaN and infinities included.
+pub(crate) fn parse_any<T: std::str::FromStr>(tok: &[u8], what: &str) -> Result<T, String> {
+    std::str::from_utf8(tok)
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .ok_or_else(|| format!("{what} `{}` is not a number", show(tok)))
 }
 
 /// Parses an integer; `what` names it in the error message ("vertex index").
