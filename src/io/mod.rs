@@ -233,6 +233,110 @@ pub(crate) fn u8_to_unit(c: u8) -> f32 {
     f32::from(c) / 255.0
 }
 
+/// Colors as read from a text file, before the file-wide choice between integers in `0..=255`
+/// and fractions in `0..=1`: fractions when any component is written with a decimal point or
+/// exponent or when no component exceeds 1, integers otherwise (then a component above 255 is
+/// an error).
+pub(crate) struct RawColors {
+    format: &'static str,
+    /// RGBA values; a missing alpha is `None`.
+    values: Vec<([f32; 4], bool)>,
+    /// Vertex lines that had a color.
+    pub(crate) count: u64,
+    /// Some component was written with a decimal point or exponent.
+    float_syntax: bool,
+    /// Largest component, with its line.
+    max: Option<(f32, u64)>,
+}
+
+impl RawColors {
+    pub(crate) fn new(format: &'static str) -> RawColors {
+        RawColors {
+            format,
+            values: Vec::new(),
+            count: 0,
+            float_syntax: false,
+            max: None,
+        }
+    }
+
+    /// Adds the color of a vertex line (3 or 4 components).
+    pub(crate) fn push(&mut self, toks: &[&[u8]], line: u64, vertex: u64) -> Result<()> {
+        let mut c = [0.0f32; 4];
+        for (k, tok) in toks.iter().enumerate() {
+            let v = lex::parse_f32(tok, "color component").map_err(|m| {
+                perr(
+                    self.format,
+                    Location::Line(line),
+                    format!("vertex {vertex}: {m}"),
+                )
+            })?;
+            if v < 0.0 {
+                return Err(perr(
+                    self.format,
+                    Location::Line(line),
+                    format!(
+                        "vertex {vertex}: negative color component `{}`",
+                        lex::show(tok)
+                    ),
+                ));
+            }
+            if !lex::is_integer_syntax(tok) {
+                self.float_syntax = true;
+            }
+            if self.max.map_or(true, |(m, _)| v > m) {
+                self.max = Some((v, line));
+            }
+            c[k] = v;
+        }
+        self.values.push((c, toks.len() == 4));
+        self.count += 1;
+        Ok(())
+    }
+
+    /// The colors as RGBA bytes, by the file-wide rule above; a missing alpha is 255.
+    pub(crate) fn finish(self, warnings: &mut Vec<String>) -> Result<Vec<[u8; 4]>> {
+        let max = self.max.map_or(0.0, |(m, _)| m);
+        let fractions = self.float_syntax || max <= 1.0;
+        if !fractions {
+            if let Some((m, line)) = self.max.filter(|&(m, _)| m > 255.0) {
+                return Err(perr(
+                    self.format,
+                    Location::Line(line),
+                    format!("integer color component {m} is outside 0..=255"),
+                ));
+            }
+        }
+        let mut clamped = 0u64;
+        let colors = self
+            .values
+            .into_iter()
+            .map(|(c, has_alpha)| {
+                let mut out = [255u8; 4];
+                let n = if has_alpha { 4 } else { 3 };
+                for k in 0..n {
+                    out[k] = if fractions {
+                        if c[k] > 1.0 {
+                            clamped += 1;
+                        }
+                        unit_to_u8(f64::from(c[k]))
+                    } else {
+                        c[k] as u8
+                    };
+                }
+                out
+            })
+            .collect();
+        if clamped > 0 {
+            warnings.push(format!(
+                "{clamped} color components above 1 were clamped (colors are read as fractions \
+                 in 0..1 because some component has a decimal point)"
+            ));
+        }
+        Ok(colors)
+    }
+}
+
 /// Formats an `f32` in the shortest text that parses back to the same bits: plain decimal for
 /// ordinary magnitudes, scientific notation for very large and very small ones.
 pub(crate) struct Float(pub f32);

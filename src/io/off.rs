@@ -23,7 +23,7 @@ use std::io::{BufWriter, Write};
 
 use super::lex::{self, Lines};
 use super::{
-    check_writable, perr, push_fan, unit_to_u8, Float, Loaded, ReadOptions, MAX_TRIANGLES,
+    check_writable, perr, push_fan, Float, Loaded, RawColors, ReadOptions, MAX_TRIANGLES,
     MAX_VERTICES,
 };
 use crate::error::{Location, Result};
@@ -88,96 +88,6 @@ fn parse_keyword(word: &[u8], line: u64) -> Result<Layout> {
         return Err(bad());
     }
     Ok(layout)
-}
-
-/// Colors as read, before the file-wide choice between integers and fractions.
-#[derive(Default)]
-struct RawColors {
-    /// RGBA values; a missing alpha is `None`.
-    values: Vec<([f32; 4], bool)>,
-    /// Vertex lines that had a color.
-    count: u64,
-    /// Some component was written with a decimal point or exponent.
-    float_syntax: bool,
-    /// Largest component, with its line.
-    max: Option<(f32, u64)>,
-}
-
-impl RawColors {
-    fn push(&mut self, toks: &[&[u8]], line: u64, vertex: u64) -> Result<()> {
-        let mut c = [0.0f32; 4];
-        for (k, tok) in toks.iter().enumerate() {
-            let v = lex::parse_f32(tok, "color component").map_err(|m| {
-                perr(
-                    FORMAT,
-                    Location::Line(line),
-                    format!("vertex {vertex}: {m}"),
-                )
-            })?;
-            if v < 0.0 {
-                return Err(perr(
-                    FORMAT,
-                    Location::Line(line),
-                    format!(
-                        "vertex {vertex}: negative color component `{}`",
-                        lex::show(tok)
-                    ),
-                ));
-            }
-            if !lex::is_integer_syntax(tok) {
-                self.float_syntax = true;
-            }
-            if self.max.map_or(true, |(m, _)| v > m) {
-                self.max = Some((v, line));
-            }
-            c[k] = v;
-        }
-        self.values.push((c, toks.len() == 4));
-        self.count += 1;
-        Ok(())
-    }
-
-    /// The colors as RGBA bytes, by the file-wide rule of the module documentation.
-    fn finish(self, warnings: &mut Vec<String>) -> Result<Vec<[u8; 4]>> {
-        let max = self.max.map_or(0.0, |(m, _)| m);
-        let fractions = self.float_syntax || max <= 1.0;
-        if !fractions {
-            if let Some((m, line)) = self.max.filter(|&(m, _)| m > 255.0) {
-                return Err(perr(
-                    FORMAT,
-                    Location::Line(line),
-                    format!("integer color component {m} is outside 0..=255"),
-                ));
-            }
-        }
-        let mut clamped = 0u64;
-        let colors = self
-            .values
-            .into_iter()
-            .map(|(c, has_alpha)| {
-                let mut out = [255u8; 4];
-                let n = if has_alpha { 4 } else { 3 };
-                for k in 0..n {
-                    out[k] = if fractions {
-                        if c[k] > 1.0 {
-                            clamped += 1;
-                        }
-                        unit_to_u8(f64::from(c[k]))
-                    } else {
-                        c[k] as u8
-                    };
-                }
-                out
-            })
-            .collect();
-        if clamped > 0 {
-            warnings.push(format!(
-                "{clamped} color components above 1 were clamped (colors are read as fractions \
-                 in 0..1 because some component has a decimal point)"
-            ));
-        }
-        Ok(colors)
-    }
 }
 
 /// Reads an OFF file.
@@ -257,7 +167,7 @@ pub fn read(bytes: &[u8], _opts: &ReadOptions) -> Result<Loaded> {
     let mut positions = Vec::with_capacity(nv as usize);
     let mut normals = Vec::with_capacity(if layout.normals { nv as usize } else { 0 });
     let mut texcoords = Vec::with_capacity(if layout.texcoords { nv as usize } else { 0 });
-    let mut colors = RawColors::default();
+    let mut colors = RawColors::new(FORMAT);
     let base = 3 + if layout.normals { 3 } else { 0 } + if layout.texcoords { 2 } else { 0 };
     let mut toks: Vec<&[u8]> = Vec::new();
 
