@@ -192,7 +192,27 @@ pub(crate) fn parse_int(tok: &[u8], what: &str) -> Result<i64, String> {
     std::str::from_utf8(tok)
         .ok()
         .and_then(|s| s.parse().ok())
-        .ok_or_else(|| format!("{what} `{}` is not an integer", show(tok)))
+        .ok_or_else(|| {
+            if is_integer_syntax(tok) {
+                format!("{what} `{}` is out of range", show(tok))
+            } else {
+                format!("{what} `{}` is not an integer", show(tok))
+            }
+        })
+}
+
+/// Parses a non-negative integer count; `what` names it in the error message.
+pub(crate) fn parse_count(tok: &[u8], what: &str) -> Result<u64, String> {
+    std::str::from_utf8(tok)
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .ok_or_else(|| match tok {
+            [b'-', ..] if is_integer_syntax(tok) => {
+                format!("{what} `{}` is negative", show(tok))
+            }
+            _ if is_integer_syntax(tok) => format!("{what} `{}` is out of range", show(tok)),
+            _ => format!("{what} `{}` is not an integer", show(tok)),
+        })
 }
 
 /// True when the token is written as an integer (no decimal point, exponent, `inf` or `nan`).

@@ -133,11 +133,10 @@ pub fn read(bytes: &[u8], _opts: &ReadOptions) -> Result<Loaded> {
     }
     let mut counts = [0u64; 2];
     for (c, tok) in counts.iter_mut().zip(&count_words) {
-        let v = lex::parse_int(tok, "count").map_err(count_err)?;
-        *c = u64::try_from(v).map_err(|_| count_err(format!("negative count {v}")))?;
+        *c = lex::parse_count(tok, "count").map_err(count_err)?;
     }
     if let Some(tok) = count_words.get(2) {
-        lex::parse_int(tok, "edge count").map_err(count_err)?;
+        lex::parse_count(tok, "edge count").map_err(count_err)?;
     }
     let [nv, nf] = counts;
     if nv > MAX_VERTICES {

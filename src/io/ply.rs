@@ -214,12 +214,8 @@ fn parse_header(bytes: &[u8]) -> Result<Header> {
                 let [name, count] = args else {
                     return Err(header_err(n, "expected `element <name> <count>`"));
                 };
-                let count = lex::parse_int(count, "element count")
-                    .map_err(|m| header_err(n, m))
-                    .and_then(|c| {
-                        u64::try_from(c)
-                            .map_err(|_| header_err(n, format!("negative element count {c}")))
-                    })?;
+                let count =
+                    lex::parse_count(count, "element count").map_err(|m| header_err(n, m))?;
                 let name = String::from_utf8_lossy(name).into_owned();
                 if elements.iter().any(|e| e.name == name) {
                     return Err(header_err(n, format!("a second element `{name}`")));
@@ -532,7 +528,7 @@ impl Source for Binary<'_> {
         match n.checked_mul(t.size() as u64) {
             Some(need) if need <= left => Ok(()),
             need => Err(format!(
-                "a list of {n} `{}` values needs {} bytes, but only {left} are left",
+                "truncated: a list of {n} `{}` values needs {} bytes, but only {left} are left",
                 t.name(),
                 need.map_or_else(|| "more than 2^64".to_string(), |x| x.to_string())
             )),
