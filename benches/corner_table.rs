@@ -98,7 +98,10 @@ fn main() {
         .iter()
         .map(|(plane, t)| ops::contour(&*TABLE, &mesh.positions, plane, *t).len())
         .sum();
-    println!("contour bench: {} planes, {walked} triangles walked", CONTOUR_STARTS.len());
+    println!(
+        "contour bench: {} planes, {walked} triangles walked",
+        CONTOUR_STARTS.len()
+    );
     divan::main();
 }
 
@@ -122,11 +125,9 @@ fn topology_report(bencher: Bencher) {
 #[divan::bench(sample_count = 20)]
 fn vertex_of_every_corner(bencher: Bencher) {
     let table = &*TABLE;
-    bencher.counter(ItemsCount::new(corners())).bench(|| {
-        table
-            .corners()
-            .fold(0u32, |acc, c| acc ^ table.vertex(c).0)
-    });
+    bencher
+        .counter(ItemsCount::new(corners()))
+        .bench(|| table.corners().fold(0u32, |acc, c| acc ^ table.vertex(c).0));
 }
 
 /// c.o over every corner (LR paper, Fig. 10).
@@ -146,7 +147,12 @@ fn valence_of_every_vertex(bencher: Bencher) {
     let table = &*TABLE;
     bencher
         .counter(ItemsCount::new(table.vertex_id_bound() as usize))
-        .bench(|| table.vertices().map(|v| ops::valence(table, v)).sum::<u32>());
+        .bench(|| {
+            table
+                .vertices()
+                .map(|v| ops::valence(table, v))
+                .sum::<u32>()
+        });
 }
 
 /// Normal of every vertex from its star (LR paper, Fig. 10).

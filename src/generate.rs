@@ -38,7 +38,10 @@ impl Rng {
 /// A closed torus of `2 * around * along` triangles on a regular grid (every valence 6).
 /// `around` and `along` must be at least 3.
 pub fn torus(around: u32, along: u32) -> Mesh {
-    assert!(around >= 3 && along >= 3, "a torus grid needs at least 3x3 cells");
+    assert!(
+        around >= 3 && along >= 3,
+        "a torus grid needs at least 3x3 cells"
+    );
     let (big, small) = (1.0f32, 0.35f32);
     let mut positions = Vec::with_capacity((around * along) as usize);
     for i in 0..along {
@@ -126,7 +129,6 @@ pub fn flip_edges(mesh: &mut Mesh, count: usize, rng: &mut Rng) {
         touched[u] = true;
     }
 }
-
 
 /// An irregular closed genus-1 mesh of at least `min_triangles` triangles: a torus grid with a
 /// third of its edges flipped at random and its vertices jittered.
@@ -217,16 +219,21 @@ pub fn add_defects(mesh: &mut Mesh, count: usize, rng: &mut Rng) {
             3 => mesh.triangles.push([a, a, b]),
             4 => {
                 let x = mesh.positions.len() as u32;
-                mesh.positions.push(jittered(mesh.positions[a as usize], rng));
+                mesh.positions
+                    .push(jittered(mesh.positions[a as usize], rng));
                 mesh.triangles.push([a, b, x]);
             }
             5 => {
                 let x = mesh.positions.len() as u32;
-                mesh.positions.push(jittered(mesh.positions[a as usize], rng));
-                mesh.positions.push(jittered(mesh.positions[b as usize], rng));
+                mesh.positions
+                    .push(jittered(mesh.positions[a as usize], rng));
+                mesh.positions
+                    .push(jittered(mesh.positions[b as usize], rng));
                 mesh.triangles.push([a, x, x + 1]);
             }
-            _ => mesh.positions.push(jittered(mesh.positions[c as usize], rng)),
+            _ => mesh
+                .positions
+                .push(jittered(mesh.positions[c as usize], rng)),
         }
     }
 }

@@ -14,6 +14,7 @@ pub mod error;
 pub mod generate;
 pub mod ids;
 pub mod io;
+pub mod lr;
 pub mod mesh;
 pub mod ops;
 pub mod topology;
@@ -24,3 +25,8 @@ pub use ids::{Corner, Triangle, Vertex};
 pub use mesh::Mesh;
 pub use ops::CornerOps;
 pub use topology::TopologyReport;
+
+/// The README's code compiles (`cargo test --doc`).
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

@@ -5,10 +5,15 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use lrmesh::io::{self, ReadOptions};
-use lrmesh::TopologyReport;
+use lrmesh::lr::{Lr, LrOptions, LrStats};
+use lrmesh::{CornerTable, TopologyReport};
 
 #[derive(Parser)]
-#[command(name = "lrmesh", version, about = "Compact random-access triangle mesh connectivity")]
+#[command(
+    name = "lrmesh",
+    version,
+    about = "Compact random-access triangle mesh connectivity"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -26,6 +31,23 @@ enum Command {
         /// STL only: merge corners with identical positions into shared vertices.
         #[arg(long)]
         weld: bool,
+    },
+    /// Storage statistics of the mesh's connectivity representations (LR paper, Table 1).
+    Stats {
+        /// The mesh file (.obj, .off, .ply, .stl).
+        mesh: PathBuf,
+        /// Print one JSON object instead of text.
+        #[arg(long)]
+        json: bool,
+        /// STL only: merge corners with identical positions into shared vertices.
+        #[arg(long)]
+        weld: bool,
+        /// RING-EXPANDER runs per component (different seed corners); the best ring is kept.
+        #[arg(long, default_value_t = LrOptions::default().tries)]
+        tries: u32,
+        /// Seed for the choice of seed corners (same seed, same result).
+        #[arg(long, default_value_t = LrOptions::default().seed)]
+        seed: u64,
     },
     /// Convert a mesh between formats, chosen by the file extensions.
     Convert {
@@ -58,6 +80,28 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
                 );
             } else {
                 print!("{report}");
+            }
+        }
+        Command::Stats {
+            mesh,
+            json,
+            weld,
+            tries,
+            seed,
+        } => {
+            let mesh = load(&mesh, weld)?;
+            let report = TopologyReport::of(&mesh);
+            let table = CornerTable::from_mesh(&mesh)?;
+            let lr = Lr::build(&table, &LrOptions { tries, seed })?;
+            let stats = LrStats::new(&lr, report.valence6_pct);
+            if json {
+                let out = serde_json::json!({ "lr": stats });
+                println!(
+                    "{}",
+                    serde_json::to_string_pretty(&out).expect("stats serialise")
+                );
+            } else {
+                print!("{stats}");
             }
         }
         Command::Convert {

@@ -159,7 +159,11 @@ fn dot(a: [f32; 3], b: [f32; 3]) -> f32 {
 /// The area-weighted normal of `v`: the normalised sum of the cross products of the triangles
 /// around it. `positions` is indexed by the representation's vertex ids. Zero for a vertex
 /// without triangles or with a degenerate star.
-pub fn vertex_normal<M: CornerOps + ?Sized>(mesh: &M, positions: &[[f32; 3]], v: Vertex) -> [f32; 3] {
+pub fn vertex_normal<M: CornerOps + ?Sized>(
+    mesh: &M,
+    positions: &[[f32; 3]],
+    v: Vertex,
+) -> [f32; 3] {
     let p = positions[v.idx()];
     let mut sum = [0.0f32; 3];
     for c in star(mesh, v) {
@@ -204,7 +208,12 @@ impl Plane {
 
 /// Whether the plane separates the endpoints of the edge facing corner `c`.
 #[inline]
-fn edge_cut<M: CornerOps + ?Sized>(mesh: &M, positions: &[[f32; 3]], plane: &Plane, c: Corner) -> bool {
+fn edge_cut<M: CornerOps + ?Sized>(
+    mesh: &M,
+    positions: &[[f32; 3]],
+    plane: &Plane,
+    c: Corner,
+) -> bool {
     let a = positions[mesh.vertex(mesh.next(c)).idx()];
     let b = positions[mesh.vertex(mesh.prev(c)).idx()];
     plane.above(a) != plane.above(b)

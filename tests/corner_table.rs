@@ -44,18 +44,28 @@ impl Recipe {
 }
 
 fn recipe() -> impl Strategy<Value = Recipe> {
-    (3u32..9, 3u32..9, 0usize..40, 0usize..3, 0usize..3, 0usize..6, 0usize..12, any::<u64>()).prop_map(
-        |(around, along, flips, handles, extra_components, holes, defects, seed)| Recipe {
-            around,
-            along,
-            flips,
-            handles,
-            extra_components,
-            holes,
-            defects,
-            seed,
-        },
+    (
+        3u32..9,
+        3u32..9,
+        0usize..40,
+        0usize..3,
+        0usize..3,
+        0usize..6,
+        0usize..12,
+        any::<u64>(),
     )
+        .prop_map(
+            |(around, along, flips, handles, extra_components, holes, defects, seed)| Recipe {
+                around,
+                along,
+                flips,
+                handles,
+                extra_components,
+                holes,
+                defects,
+                seed,
+            },
+        )
 }
 
 proptest! {
@@ -132,8 +142,14 @@ fn irregular_torus_is_a_clean_torus() {
     let mesh = generate::irregular_torus(5000, 7);
     let r = TopologyReport::of(&mesh);
     assert!(r.triangles >= 5000);
-    assert_eq!((r.genus, r.nonmanifold_edges, r.inconsistent_edges), (Some(1), 0, 0));
-    assert!(r.valence6_pct < 60.0, "flips should make valences irregular: {r:?}");
+    assert_eq!(
+        (r.genus, r.nonmanifold_edges, r.inconsistent_edges),
+        (Some(1), 0, 0)
+    );
+    assert!(
+        r.valence6_pct < 60.0,
+        "flips should make valences irregular: {r:?}"
+    );
     check_corner_table(&mesh);
 }
 
@@ -147,7 +163,10 @@ fn normals_of_a_torus_point_out_of_the_tube() {
         let r = (p[0] * p[0] + p[1] * p[1]).sqrt();
         let out = [p[0] - p[0] / r, p[1] - p[1] / r, p[2]];
         let d = out[0] * n[0] + out[1] * n[1] + out[2] * n[2];
-        assert!(d > 0.9 * (out.iter().map(|x| x * x).sum::<f32>()).sqrt(), "{p:?} {n:?}");
+        assert!(
+            d > 0.9 * (out.iter().map(|x| x * x).sum::<f32>()).sqrt(),
+            "{p:?} {n:?}"
+        );
     }
 }
 
@@ -234,14 +253,20 @@ fn three_triangles_on_an_edge_are_cut_apart() {
     let mesh = Mesh::new(vec![[0.0; 3]; 5], vec![[0, 1, 2], [1, 0, 3], [0, 1, 4]]);
     let table = CornerTable::from_mesh(&mesh).unwrap();
     assert_eq!(table.conversion().cut_nonmanifold_edges, 1);
-    assert!(table.o_table().iter().all(|&o| o == lrmesh::corner_table::NONE));
+    assert!(table
+        .o_table()
+        .iter()
+        .all(|&o| o == lrmesh::corner_table::NONE));
     assert_eq!(table.conversion().vertex_copies, 4);
     check_corner_table(&mesh);
 }
 
 #[test]
 fn degenerate_triangles_are_kept_aside_in_place() {
-    let mesh = Mesh::new(vec![[0.0; 3]; 4], vec![[0, 1, 2], [1, 1, 3], [2, 1, 3], [3, 3, 3]]);
+    let mesh = Mesh::new(
+        vec![[0.0; 3]; 4],
+        vec![[0, 1, 2], [1, 1, 3], [2, 1, 3], [3, 3, 3]],
+    );
     let table = CornerTable::from_mesh(&mesh).unwrap();
     assert_eq!(table.kept_aside(), &[(1, [1, 1, 3]), (3, [3, 3, 3])]);
     assert_eq!(table.triangle_id_bound(), 2);
@@ -252,5 +277,8 @@ fn degenerate_triangles_are_kept_aside_in_place() {
 #[test]
 fn out_of_range_index_is_an_error() {
     let err = CornerTable::build(3, &[[0, 1, 3]]).unwrap_err();
-    assert!(err.to_string().contains("triangle 0 refers to vertex 3"), "{err}");
+    assert!(
+        err.to_string().contains("triangle 0 refers to vertex 3"),
+        "{err}"
+    );
 }

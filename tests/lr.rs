@@ -1,0 +1,99 @@
+//! The Laced Ring against the corner table: every canonical corner, on real and generated
+//! meshes.
+
+mod common;
+
+use common::{check_against_table, corpus_dir};
+use lrmesh::generate::{self, Rng};
+use lrmesh::io::{read_mesh, ReadOptions};
+use lrmesh::lr::{Lr, LrOptions};
+use lrmesh::{CornerOps, CornerTable, Mesh};
+use proptest::prelude::*;
+
+fn check_lr(mesh: &Mesh, options: &LrOptions) -> Lr {
+    let table = CornerTable::from_mesh(mesh).unwrap();
+    let lr = Lr::build(&table, options).unwrap();
+    let key = |c: lrmesh::Corner| {
+        (
+            lr.input_triangle(lr.triangle(c)),
+            lr.input_vertex(lr.vertex(c)),
+        )
+    };
+    let position = |v: lrmesh::Vertex| mesh.positions[lr.input_vertex(v) as usize];
+    check_against_table(&lr, key, position, &table, mesh);
+    lr
+}
+
+#[test]
+fn torus() {
+    let lr = check_lr(&generate::torus(6, 9), &LrOptions::default());
+    assert_eq!(lr.counts().isolated_vertices(), 0);
+}
+
+#[test]
+fn irregular_torus() {
+    let lr = check_lr(&generate::irregular_torus(20_000, 3), &LrOptions::default());
+    eprintln!(
+        "{:?} rpt {}",
+        lr.counts(),
+        lr.counts().references_per_triangle()
+    );
+}
+
+#[test]
+fn single_triangle_and_pocket() {
+    check_lr(
+        &Mesh::new(vec![[0.0; 3]; 3], vec![[0, 1, 2]]),
+        &LrOptions::default(),
+    );
+    check_lr(
+        &Mesh::new(vec![[0.0; 3]; 3], vec![[0, 1, 2], [0, 2, 1]]),
+        &LrOptions::default(),
+    );
+}
+
+#[test]
+fn corpus_meshes() {
+    for entry in std::fs::read_dir(corpus_dir()).unwrap() {
+        let path = entry.unwrap().path();
+        if lrmesh::io::MeshFormat::from_path(&path).is_err() {
+            continue;
+        }
+        let mesh = read_mesh(&path, &ReadOptions::default()).unwrap().mesh;
+        let lr = check_lr(&mesh, &LrOptions::default());
+        eprintln!(
+            "{}: {:?} rpt {:.3}",
+            path.display(),
+            lr.counts(),
+            lr.counts().references_per_triangle()
+        );
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    #[test]
+    fn soups(vertices in 1u32..25, triangles in 0u32..60, seed in any::<u64>(), tries in 1u32..4) {
+        let mesh = generate::soup(vertices, triangles, &mut Rng::new(seed));
+        check_lr(&mesh, &LrOptions { tries, seed });
+    }
+
+    #[test]
+    fn tori_with_everything(around in 3u32..9, along in 3u32..9, holes in 0usize..8,
+                            defects in 0usize..10, handles in 0usize..3, seed in any::<u64>()) {
+        let mut rng = Rng::new(seed);
+        let mut mesh = generate::torus(around, along);
+        generate::flip_edges(&mut mesh, 20, &mut rng);
+        for _ in 0..handles {
+            let t = rng.below(mesh.triangles.len() as u32) as usize;
+            if let Some(u) = generate::far_triangle(&mesh, t, &mut rng) {
+                generate::add_handle(&mut mesh, t, u);
+            }
+        }
+        generate::append(&mut mesh, &generate::torus(3, 5));
+        generate::punch_holes(&mut mesh, holes, &mut rng);
+        generate::add_defects(&mut mesh, defects, &mut rng);
+        check_lr(&mesh, &LrOptions { tries: 2, seed });
+    }
+}
