@@ -114,6 +114,10 @@ impl Rings {
     /// `v.n`: the next vertex along the ring.
     #[inline]
     pub fn next(&self, v: u32) -> u32 {
+        if let [0, end] = self.starts[..] {
+            // One ring, the common case: no bit vector to consult.
+            return if v + 1 == end { 0 } else { v + 1 };
+        }
         if self.is_last(v) {
             self.starts[self.ring_of(v)]
         } else {
@@ -124,6 +128,9 @@ impl Rings {
     /// `v.p`: the previous vertex along the ring.
     #[inline]
     pub fn prev(&self, v: u32) -> u32 {
+        if let [0, end] = self.starts[..] {
+            return if v == 0 { end - 1 } else { v - 1 };
+        }
         if v == 0 || self.is_last(v - 1) {
             self.starts[self.ring_of(v) + 1] - 1
         } else {
@@ -196,6 +203,12 @@ pub struct Lr {
     vertex_input: Vec<u32>,
     /// LR triangle id -> input triangle (`NONE` for ids that are not canonical triangles).
     triangle_input: Vec<u32>,
+    /// Input vertex -> an LR vertex standing for it (the first fan's, for split vertices).
+    input_vertex_lr: Vec<u32>,
+    /// Input triangle -> LR triangle (`NONE` for degenerate triangles, kept aside).
+    input_triangle_lr: Vec<u32>,
+    /// Degenerate input triangles: `(input index, input vertex triple)`.
+    kept_aside: Vec<(u32, [u32; 3])>,
 }
 
 /// The corner table closed by dummy vertices and triangles over each boundary loop.
@@ -562,6 +575,9 @@ impl Lr {
             counts: LrCounts::default(),
             vertex_input: Vec::new(),
             triangle_input: Vec::new(),
+            input_vertex_lr: Vec::new(),
+            input_triangle_lr: Vec::new(),
+            kept_aside: ct.kept_aside().to_vec(),
         };
         let mut false_redundant = Vec::new();
         for slot in 0..lr_struct.lr.len() {
@@ -661,10 +677,17 @@ impl Lr {
                 };
             }
         }
+        lr_struct.input_vertex_lr = vec![NONE; ct.input_vertex_count() as usize];
+        for x in (0..m).rev() {
+            lr_struct.input_vertex_lr[ct.original_vertex(Vertex(x)).idx()] = lr_vertex[x as usize];
+        }
         lr_struct.triangle_input = vec![NONE; 2 * m_r as usize + t0_list.len()];
+        lr_struct.input_triangle_lr = vec![NONE; nt_real + ct.kept_aside().len()];
         for t in 0..nt_real {
             let id = ct_to_lr[3 * t] / 4;
-            lr_struct.triangle_input[id as usize] = ct.input_triangle(Triangle(t as u32));
+            let input = ct.input_triangle(Triangle(t as u32));
+            lr_struct.triangle_input[id as usize] = input;
+            lr_struct.input_triangle_lr[input as usize] = id;
         }
         lr_struct.counts = LrCounts {
             triangles: nt_real as u32,
@@ -703,6 +726,39 @@ impl Lr {
     /// The input triangle that canonical LR triangle `t` stands for.
     pub fn input_triangle(&self, t: Triangle) -> u32 {
         self.triangle_input[t.idx()]
+    }
+
+    /// An LR vertex that input vertex `v` became (the first fan's, for a vertex that the
+    /// pseudo-manifold conversion split).
+    pub fn lr_vertex(&self, input_vertex: u32) -> Vertex {
+        Vertex(self.input_vertex_lr[input_vertex as usize])
+    }
+
+    /// The LR triangle that input triangle `t` became; `None` for a degenerate triangle.
+    pub fn lr_triangle(&self, input_triangle: u32) -> Option<Triangle> {
+        match self.input_triangle_lr[input_triangle as usize] {
+            NONE => None,
+            t => Some(Triangle(t)),
+        }
+    }
+
+    /// Degenerate input triangles, kept aside: `(input index, input vertex triple)`.
+    pub fn kept_aside(&self) -> &[(u32, [u32; 3])] {
+        &self.kept_aside
+    }
+
+    /// The input triangles, in input order, from the LR alone. Each comes back with the same
+    /// orientation, possibly rotated (an LR triangle starts at its ring vertex).
+    pub fn input_triangles(&self) -> Vec<[u32; 3]> {
+        let mut out = vec![[0u32; 3]; self.input_triangle_lr.len()];
+        for t in self.triangles() {
+            let [a, b, c] = self.triangle_vertices(t).map(|v| self.input_vertex(v));
+            out[self.input_triangle(t) as usize] = [a, b, c];
+        }
+        for &(input, tri) in &self.kept_aside {
+            out[input as usize] = tri;
+        }
+        out
     }
 
     /// The rings.

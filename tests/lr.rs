@@ -21,6 +21,27 @@ fn check_lr(mesh: &Mesh, options: &LrOptions) -> Lr {
     };
     let position = |v: lrmesh::Vertex| mesh.positions[lr.input_vertex(v) as usize];
     check_against_table(&lr, key, position, &table, mesh);
+    // The LR alone gives back every input triangle, oriented, up to rotation.
+    let back = lr.input_triangles();
+    assert_eq!(back.len(), mesh.triangles.len());
+    for (k, (got, want)) in back.iter().zip(&mesh.triangles).enumerate() {
+        let rotations = [
+            *want,
+            [want[1], want[2], want[0]],
+            [want[2], want[0], want[1]],
+        ];
+        assert!(
+            rotations.contains(got),
+            "input triangle {k}: {got:?} != {want:?}"
+        );
+        match lr.lr_triangle(k as u32) {
+            Some(t) => assert_eq!(lr.input_triangle(t), k as u32),
+            None => assert!(lr.kept_aside().iter().any(|&(i, _)| i == k as u32)),
+        }
+    }
+    for v in 0..mesh.positions.len() as u32 {
+        assert_eq!(lr.input_vertex(lr.lr_vertex(v)), v);
+    }
     lr
 }
 

@@ -136,6 +136,10 @@ pub fn check_against_table<M: CornerOps>(
         table.triangle_id_bound() as usize,
         "triangle count"
     );
+    let rep_positions: Vec<[f32; 3]> = (0..rep.vertex_id_bound())
+        .map(|v| vertex_position(lrmesh::Vertex(v)))
+        .collect();
+    let table_positions = table.extend_to_copies(&mesh.positions);
     let mut vertices = 0;
     for v in rep.vertices() {
         vertices += 1;
@@ -152,8 +156,41 @@ pub fn check_against_table<M: CornerOps>(
             ops::valence(table, table.vertex(tc)),
             "valence of {v:?}"
         );
-        let _ = &vertex_position;
-        let _ = mesh;
+        // Normals agree wherever they are well defined: where the triangles' cross products
+        // do not nearly cancel (as they do in a two-triangle pocket).
+        let ours = ops::vertex_normal(rep, &rep_positions, v);
+        let theirs = ops::vertex_normal(table, &table_positions, table.vertex(tc));
+        let (sum, total) = cross_sums(table, &table_positions, table.vertex(tc));
+        if sum > 1e-3 * total {
+            let gap = (0..3)
+                .map(|i| (ours[i] - theirs[i]).abs())
+                .fold(0.0, f32::max);
+            assert!(gap < 1e-4, "normal of {v:?}: {ours:?} != {theirs:?}");
+        }
     }
     assert_eq!(vertices, table.vertex_id_bound(), "vertex count");
+}
+
+/// The length of the sum of the cross products around `v`, and the sum of their lengths.
+fn cross_sums(table: &CornerTable, positions: &[[f32; 3]], v: lrmesh::Vertex) -> (f64, f64) {
+    let p = |c: Corner| positions[table.vertex(c).idx()].map(f64::from);
+    let (mut sum, mut total) = ([0.0f64; 3], 0.0);
+    for c in ops::star(table, v) {
+        let (o, a, b) = (p(c), p(table.next(c)), p(table.prev(c)));
+        let (a, b) = (
+            [0, 1, 2].map(|i| a[i] - o[i]),
+            [0, 1, 2].map(|i| b[i] - o[i]),
+        );
+        let n = [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ];
+        total += (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        sum = [0, 1, 2].map(|i| sum[i] + n[i]);
+    }
+    (
+        (sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]).sqrt(),
+        total,
+    )
 }
