@@ -99,20 +99,20 @@ impl Rings {
         Rings { starts, last, rank }
     }
 
-    #[inline]
+    #[inline(always)]
     fn is_last(&self, v: u32) -> bool {
         self.last[v as usize / 64] >> (v % 64) & 1 != 0
     }
 
     /// Index of the ring that holds `v`: the number of ring ends before `v`.
-    #[inline]
+    #[inline(always)]
     fn ring_of(&self, v: u32) -> usize {
         let word = self.last[v as usize / 64] & ((1u64 << (v % 64)) - 1);
         (self.rank[v as usize / 64] + word.count_ones()) as usize
     }
 
     /// `v.n`: the next vertex along the ring.
-    #[inline]
+    #[inline(always)]
     pub fn next(&self, v: u32) -> u32 {
         if let [0, end] = self.starts[..] {
             // One ring, the common case: no bit vector to consult.
@@ -126,7 +126,7 @@ impl Rings {
     }
 
     /// `v.p`: the previous vertex along the ring.
-    #[inline]
+    #[inline(always)]
     pub fn prev(&self, v: u32) -> u32 {
         if let [0, end] = self.starts[..] {
             return if v == 0 { end - 1 } else { v - 1 };
@@ -416,15 +416,24 @@ impl Lr {
         let mut ring_corner = Vec::new(); // per ring vertex: the tip corner of its left slot
         let mut starts = vec![0u32];
         for comp in components(&mesh) {
-            let mut best: Option<(usize, u32)> = None;
+            // Fewest isolated vertices first, then fewest T0 triangles (before wart skipping).
+            let mut best: Option<((usize, usize), u32)> = None;
             for _ in 0..options.tries.max(1) {
                 let t = comp.real_triangles[rng.below(comp.real_triangles.len() as u32) as usize];
                 let s = 3 * t + rng.below(3);
                 reset(&comp, &mut vm, &mut tm);
                 ring_expander(&mesh, s, &mut vm, &mut tm);
                 let isolated = comp.vertices.iter().filter(|&&x| !vm[x as usize]).count();
-                if best.is_none_or(|(b, _)| isolated < b) {
-                    best = Some((isolated, s));
+                let t0 = comp
+                    .real_triangles
+                    .iter()
+                    .filter(|&&t| {
+                        let inside = tm[t as usize];
+                        (0..3).all(|i| tm[mesh.o[3 * t as usize + i] as usize / 3] == inside)
+                    })
+                    .count();
+                if best.is_none_or(|(b, _)| (isolated, t0) < b) {
+                    best = Some(((isolated, t0), s));
                 }
             }
             let (_, s) = best.expect("at least one try");
@@ -766,13 +775,13 @@ impl Lr {
         &self.rings
     }
 
-    #[inline]
+    #[inline(always)]
     fn entry(&self, v: u32, side: usize) -> u32 {
         self.lr[2 * v as usize + side]
     }
 
     /// The tip vertex of slot `(v, side)` (`NULL` when that right triangle does not exist).
-    #[inline]
+    #[inline(always)]
     fn tip(&self, v: u32, side: usize) -> u32 {
         let e = self.entry(v, side);
         if e & IRREGULAR != 0 {
@@ -782,13 +791,13 @@ impl Lr {
         }
     }
 
-    #[inline]
+    #[inline(always)]
     fn wart(&self, v: u32, side: usize) -> bool {
         self.entry(v, side) & WART != 0
     }
 
     /// The slot's third vertex: `v.n`, or `v.n.n` in a wart slot (the skipped ring).
-    #[inline]
+    #[inline(always)]
     fn far(&self, v: u32, side: usize) -> u32 {
         let n = self.rings.next(v);
         if self.wart(v, side) {
@@ -799,14 +808,14 @@ impl Lr {
     }
 
     /// Whether slot `(v, side)` is the redundant copy of a T2 (its first ring edge).
-    #[inline]
+    #[inline(always)]
     fn redundant(&self, v: u32, side: usize) -> bool {
         let e = self.entry(v, side);
         e & (IRREGULAR | WART) == 0 && e == self.rings.next(self.rings.next(v))
     }
 
     /// Maps a corner of a redundant T2 copy to the same corner of the canonical slot.
-    #[inline]
+    #[inline(always)]
     fn canonical(&self, c: u32) -> u32 {
         if c >= 8 * self.m_r {
             return c;
@@ -826,7 +835,7 @@ impl Lr {
     }
 
     /// The corner on the other side of ring edge `(v, v.n)` from `side`, facing it.
-    #[inline]
+    #[inline(always)]
     fn across(&self, v: u32, side: usize) -> u32 {
         if side == LEFT {
             if self.wart(v, RIGHT) {
@@ -845,7 +854,7 @@ impl Lr {
 
     /// A left triangle holding half-edge `y -> x` (facing an edge `x -> y` of a left
     /// triangle): the corner facing it, or `NONE`.
-    #[inline]
+    #[inline(always)]
     fn find_left(&self, x: u32, y: u32) -> u32 {
         if y < self.m_r && self.tip(y, LEFT) == x {
             return self.canonical(8 * y + 2);
@@ -864,7 +873,7 @@ impl Lr {
     }
 
     /// A right triangle holding half-edge `y -> x`: the corner facing it, or `NONE`.
-    #[inline]
+    #[inline(always)]
     fn find_right(&self, x: u32, y: u32) -> u32 {
         if x < self.m_r && self.tip(x, RIGHT) == y {
             return self.canonical(8 * x + 4);
@@ -883,7 +892,7 @@ impl Lr {
     }
 
     /// `c.o` for a canonical corner, as a raw id (`NONE` on a boundary).
-    #[inline]
+    #[inline(always)]
     fn opposite_raw(&self, c: u32) -> u32 {
         if c >= 8 * self.m_r {
             return self.vo_o[(c - c / 4 - 6 * self.m_r) as usize];
