@@ -1,0 +1,419 @@
+//! The LR tables and the corner operators on them, written once for any storage: owned
+//! vectors (after construction) or little-endian bytes of a container (zero-copy view).
+
+use crate::corner_table::NONE;
+use crate::ids::{Corner, Triangle, Vertex};
+use crate::ops::CornerOps;
+
+/// Entry flag: the slot's triangle has a VO* record; the entry's value is the record index.
+pub const IRREGULAR: u32 = 1 << 31;
+/// Entry flag: the slot holds a T0 triangle in a wart's redundant slot; its far vertex is
+/// `v.n.n`.
+pub const WART: u32 = 1 << 30;
+/// The value bits of an entry: a vertex id, [`NULL`], or a VO* record index.
+pub const VALUE: u32 = WART - 1;
+/// The tip of a right triangle that does not exist (a boundary ring edge).
+pub const NULL: u32 = VALUE;
+
+/// Left or right side of a ring edge: the offset of its slot in the LR table.
+pub(crate) const LEFT: usize = 0;
+pub(crate) const RIGHT: usize = 1;
+
+/// An array of 32-bit words: a vector, or little-endian bytes read in place.
+pub trait Words {
+    /// Word `i`. Panics when `i` is out of range; validation guarantees it never is.
+    fn at(&self, i: usize) -> u32;
+    /// Number of words.
+    fn count(&self) -> usize;
+}
+
+impl Words for Vec<u32> {
+    #[inline(always)]
+    fn at(&self, i: usize) -> u32 {
+        self[i]
+    }
+    fn count(&self) -> usize {
+        self.len()
+    }
+}
+
+/// Little-endian 32-bit words in a byte slice, read without assuming alignment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct LeWords<'a>(pub(crate) &'a [u8]);
+
+impl Words for LeWords<'_> {
+    #[inline(always)]
+    fn at(&self, i: usize) -> u32 {
+        let b = &self.0[4 * i..4 * i + 4];
+        u32::from_le_bytes([b[0], b[1], b[2], b[3]])
+    }
+    fn count(&self) -> usize {
+        self.0.len() / 4
+    }
+}
+
+/// The standard LR tables (see the module documentation of [`crate::lr`]).
+///
+/// Rings are ranges of consecutive vertex ids. `ring_starts` holds each ring's first vertex
+/// and `m_r` at the end; `ring_last` has bit `v` set when `v` ends its ring, and `ring_rank`
+/// counts the set bits before each 32-bit word, so that the ring of `v` (and so `v.n` at a
+/// ring's end) is found in constant time.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct LrTables<W> {
+    /// `L[v], R[v]` interleaved: entry `2v + side`.
+    pub(crate) lr: W,
+    /// VO: vertices of T0 triangles, three each.
+    pub(crate) vo_v: W,
+    /// VO: opposites of T0 corners, three each (`NONE` on a boundary).
+    pub(crate) vo_o: W,
+    /// VO*: records `(tip, o_a, o_b)`.
+    pub(crate) vo_star: W,
+    /// C: a corner of each isolated vertex (`NONE` for a vertex without triangles).
+    pub(crate) c: W,
+    pub(crate) ring_starts: W,
+    pub(crate) ring_last: W,
+    pub(crate) ring_rank: W,
+    /// Ring vertices.
+    pub(crate) m_r: u32,
+    /// All vertices.
+    pub(crate) m: u32,
+}
+
+/// Ring bit vector and ranks for rings starting at `starts` (which ends with `m_r`).
+pub(crate) fn ring_bits(starts: &[u32]) -> (Vec<u32>, Vec<u32>) {
+    let m_r = *starts.last().unwrap_or(&0) as usize;
+    let mut last = vec![0u32; m_r.div_ceil(32)];
+    for w in starts.windows(2) {
+        let v = w[1] as usize - 1;
+        last[v / 32] |= 1 << (v % 32);
+    }
+    let mut rank = Vec::with_capacity(last.len());
+    let mut count = 0;
+    for word in &last {
+        rank.push(count);
+        count += word.count_ones();
+    }
+    (last, rank)
+}
+
+impl<W: Words> LrTables<W> {
+    /// Number of ring vertices `m_r`.
+    pub fn ring_vertices(&self) -> u32 {
+        self.m_r
+    }
+
+    /// Number of rings.
+    pub fn ring_count(&self) -> usize {
+        self.ring_starts.count().saturating_sub(1)
+    }
+
+    /// Number of T0 triangles in VO.
+    pub fn t0_count(&self) -> u32 {
+        (self.vo_v.count() / 3) as u32
+    }
+
+    /// Number of VO* records.
+    pub fn record_count(&self) -> u32 {
+        (self.vo_star.count() / 3) as u32
+    }
+
+    /// Storage in 32-bit references: LR, VO, VO* and C (the rpt numerator).
+    pub fn references(&self) -> u64 {
+        (self.lr.count()
+            + self.vo_v.count()
+            + self.vo_o.count()
+            + self.vo_star.count()
+            + self.c.count()) as u64
+    }
+
+    #[inline(always)]
+    fn is_last(&self, v: u32) -> bool {
+        self.ring_last.at(v as usize / 32) >> (v % 32) & 1 != 0
+    }
+
+    /// Index of the ring that holds `v`: the number of ring ends before `v`.
+    #[inline(always)]
+    fn ring_of(&self, v: u32) -> usize {
+        let word = self.ring_last.at(v as usize / 32) & ((1u32 << (v % 32)) - 1);
+        (self.ring_rank.at(v as usize / 32) + word.count_ones()) as usize
+    }
+
+    /// `v.n`: the next vertex along `v`'s ring.
+    #[inline(always)]
+    pub fn ring_next(&self, v: u32) -> u32 {
+        if self.ring_starts.count() == 2 {
+            // One ring, the common case: no bit vector to consult.
+            return if v + 1 == self.m_r { 0 } else { v + 1 };
+        }
+        if self.is_last(v) {
+            self.ring_starts.at(self.ring_of(v))
+        } else {
+            v + 1
+        }
+    }
+
+    /// `v.p`: the previous vertex along `v`'s ring.
+    #[inline(always)]
+    pub fn ring_prev(&self, v: u32) -> u32 {
+        if self.ring_starts.count() == 2 {
+            return if v == 0 { self.m_r - 1 } else { v - 1 };
+        }
+        if v == 0 || self.is_last(v - 1) {
+            self.ring_starts.at(self.ring_of(v) + 1) - 1
+        } else {
+            v - 1
+        }
+    }
+
+    #[inline(always)]
+    pub(crate) fn entry(&self, v: u32, side: usize) -> u32 {
+        self.lr.at(2 * v as usize + side)
+    }
+
+    /// The tip vertex of slot `(v, side)` (`NULL` when that right triangle does not exist).
+    #[inline(always)]
+    pub(crate) fn tip(&self, v: u32, side: usize) -> u32 {
+        let e = self.entry(v, side);
+        if e & IRREGULAR != 0 {
+            self.vo_star.at(3 * (e & VALUE) as usize)
+        } else {
+            e & VALUE
+        }
+    }
+
+    #[inline(always)]
+    pub(crate) fn wart(&self, v: u32, side: usize) -> bool {
+        self.entry(v, side) & WART != 0
+    }
+
+    /// The slot's third vertex: `v.n`, or `v.n.n` in a wart slot (the skipped ring).
+    #[inline(always)]
+    pub(crate) fn far(&self, v: u32, side: usize) -> u32 {
+        let n = self.ring_next(v);
+        if self.wart(v, side) {
+            self.ring_next(n)
+        } else {
+            n
+        }
+    }
+
+    /// Whether slot `(v, side)` is the redundant copy of a T2 (its first ring edge).
+    #[inline(always)]
+    pub(crate) fn redundant(&self, v: u32, side: usize) -> bool {
+        let e = self.entry(v, side);
+        e & (IRREGULAR | WART) == 0 && e == self.ring_next(self.ring_next(v))
+    }
+
+    /// Maps a corner of a redundant T2 copy to the same corner of the canonical slot.
+    #[inline(always)]
+    pub(crate) fn canonical(&self, c: u32) -> u32 {
+        if c >= 8 * self.m_r {
+            return c;
+        }
+        let (v, i) = (c >> 3, c & 7);
+        let side = (i >> 2) as usize;
+        if !self.redundant(v, side) {
+            return c;
+        }
+        let w = self.ring_next(v);
+        let j = if side == LEFT {
+            (i + 1) % 3
+        } else {
+            4 + (i - 4 + 2) % 3
+        };
+        8 * w + j
+    }
+
+    /// The corner on the other side of ring edge `(v, v.n)` from `side`, facing it.
+    #[inline(always)]
+    fn across(&self, v: u32, side: usize) -> u32 {
+        if side == LEFT {
+            if self.wart(v, RIGHT) {
+                8 * self.ring_next(v) + 4
+            } else if self.tip(v, RIGHT) == NULL {
+                NONE
+            } else {
+                self.canonical(8 * v + 5)
+            }
+        } else if self.wart(v, LEFT) {
+            8 * self.ring_next(v) + 2
+        } else {
+            self.canonical(8 * v + 1)
+        }
+    }
+
+    /// A left triangle holding half-edge `y -> x` (facing an edge `x -> y` of a left
+    /// triangle): the corner facing it, or `NONE`.
+    #[inline(always)]
+    fn find_left(&self, x: u32, y: u32) -> u32 {
+        if y < self.m_r && self.tip(y, LEFT) == x {
+            return self.canonical(8 * y + 2);
+        }
+        if x < self.m_r {
+            let p = self.ring_prev(x);
+            if !self.wart(p, LEFT) && self.tip(p, LEFT) == y {
+                return self.canonical(8 * p);
+            }
+            let pp = self.ring_prev(p);
+            if self.wart(pp, LEFT) && self.tip(pp, LEFT) == y {
+                return self.canonical(8 * pp);
+            }
+        }
+        NONE
+    }
+
+    /// A right triangle holding half-edge `y -> x`: the corner facing it, or `NONE`.
+    #[inline(always)]
+    fn find_right(&self, x: u32, y: u32) -> u32 {
+        if x < self.m_r && self.tip(x, RIGHT) == y {
+            return self.canonical(8 * x + 4);
+        }
+        if y < self.m_r {
+            let p = self.ring_prev(y);
+            if !self.wart(p, RIGHT) && self.tip(p, RIGHT) == x {
+                return self.canonical(8 * p + 6);
+            }
+            let pp = self.ring_prev(p);
+            if self.wart(pp, RIGHT) && self.tip(pp, RIGHT) == x {
+                return self.canonical(8 * pp + 6);
+            }
+        }
+        NONE
+    }
+
+    /// `c.o` for a canonical corner, as a raw id (`NONE` on a boundary).
+    #[inline(always)]
+    pub(crate) fn opposite_raw(&self, c: u32) -> u32 {
+        if c >= 8 * self.m_r {
+            return self.vo_o.at((c - c / 4 - 6 * self.m_r) as usize);
+        }
+        let (v, i) = (c >> 3, c & 7);
+        let side = (i >> 2) as usize;
+        let e = self.entry(v, side);
+        let wart = e & WART != 0;
+        if i == 1 || i == 5 {
+            // The corner facing the ring edge (or, in a wart slot, the wart's edge).
+            return if wart {
+                8 * self.ring_next(v) + if side == LEFT { 0 } else { 6 }
+            } else {
+                self.across(v, side)
+            };
+        }
+        if e & IRREGULAR != 0 {
+            let record = 3 * (e & VALUE) as usize;
+            let second = (i == 2 || i == 6) as usize;
+            return self.vo_star.at(record + 1 + second);
+        }
+        let tip = e & VALUE;
+        let p = self.ring_prev(v);
+        // A canonical T2 (v.p, v, v.n): tip v.p; one of its corners faces ring edge (v.p, v).
+        let t2 = !wart && tip == p;
+        match i {
+            0 if t2 && self.wart(p, LEFT) => 8 * p + 1,
+            0 => self.find_left(tip, self.far(v, side)),
+            2 if t2 => self.across(p, LEFT),
+            2 => self.find_left(v, tip),
+            4 if t2 => self.across(p, RIGHT),
+            4 => self.find_right(tip, v),
+            6 if t2 && self.wart(p, RIGHT) => 8 * p + 5,
+            _ => self.find_right(self.far(v, side), tip),
+        }
+    }
+
+    /// Whether slot `(v, side)` holds a canonical triangle: it exists (a right slot may be a
+    /// boundary's `NULL`) and is not a redundant T2 copy.
+    #[inline(always)]
+    pub(crate) fn slot_is_triangle(&self, v: u32, side: usize) -> bool {
+        self.tip(v, side) != NULL && !self.redundant(v, side)
+    }
+
+    /// Whether `t` is a canonical triangle id (not a redundant copy, unused or a missing right
+    /// triangle).
+    pub fn is_triangle(&self, t: Triangle) -> bool {
+        let t = t.0;
+        if t >= 2 * self.m_r {
+            return t - 2 * self.m_r < self.t0_count();
+        }
+        self.slot_is_triangle(t / 2, (t % 2) as usize)
+    }
+
+    /// Whether `c` is a corner of a canonical triangle.
+    pub fn is_corner(&self, c: Corner) -> bool {
+        c.0 & 3 != 3 && self.is_triangle(Triangle(c.0 >> 2))
+    }
+}
+
+impl<W: Words> CornerOps for LrTables<W> {
+    fn vertex_id_bound(&self) -> u32 {
+        self.m
+    }
+
+    fn triangle_id_bound(&self) -> u32 {
+        2 * self.m_r + self.t0_count()
+    }
+
+    fn triangles(&self) -> impl Iterator<Item = Triangle> + '_ {
+        (0..self.triangle_id_bound())
+            .map(Triangle)
+            .filter(|&t| self.is_triangle(t))
+    }
+
+    fn vertices(&self) -> impl Iterator<Item = Vertex> + '_ {
+        (0..self.m).map(Vertex)
+    }
+
+    #[inline(always)]
+    fn vertex(&self, c: Corner) -> Vertex {
+        let c = c.0;
+        if c >= 8 * self.m_r {
+            return Vertex(self.vo_v.at((c - c / 4 - 6 * self.m_r) as usize));
+        }
+        let v = c >> 3;
+        Vertex(match c & 7 {
+            0 | 6 => v,
+            1 => self.tip(v, LEFT),
+            2 => self.far(v, LEFT),
+            4 => self.far(v, RIGHT),
+            _ => self.tip(v, RIGHT),
+        })
+    }
+
+    #[inline(always)]
+    fn triangle(&self, c: Corner) -> Triangle {
+        Triangle(c.0 >> 2)
+    }
+
+    #[inline(always)]
+    fn next(&self, c: Corner) -> Corner {
+        Corner(if c.0 & 3 == 2 { c.0 - 2 } else { c.0 + 1 })
+    }
+
+    #[inline(always)]
+    fn prev(&self, c: Corner) -> Corner {
+        Corner(if c.0 & 3 == 0 { c.0 + 2 } else { c.0 - 1 })
+    }
+
+    #[inline(always)]
+    fn opposite(&self, c: Corner) -> Option<Corner> {
+        match self.opposite_raw(c.0) {
+            NONE => None,
+            d => Some(Corner(d)),
+        }
+    }
+
+    #[inline(always)]
+    fn vertex_corner(&self, v: Vertex) -> Option<Corner> {
+        if v.0 >= self.m_r {
+            return match self.c.at((v.0 - self.m_r) as usize) {
+                NONE => None,
+                c => Some(Corner(c)),
+            };
+        }
+        Some(Corner(self.canonical(8 * v.0)))
+    }
+
+    #[inline(always)]
+    fn triangle_corner(&self, t: Triangle) -> Corner {
+        Corner(4 * t.0)
+    }
+}
