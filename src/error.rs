@@ -59,6 +59,28 @@ impl fmt::Display for ParseError {
     }
 }
 
+/// A malformed container: the section (or `header`, `section table`), the byte offset from
+/// the start of the file, and what is wrong.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct FormatError {
+    /// The section's tag, or `header` / `section table`.
+    pub section: String,
+    /// Byte offset from the start of the file.
+    pub offset: u64,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl fmt::Display for FormatError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "invalid container: {} at byte offset {}: {}",
+            self.section, self.offset, self.message
+        )
+    }
+}
+
 /// Every error the crate returns.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
@@ -85,6 +107,37 @@ pub enum Error {
     /// A mesh handed to the library breaks the mesh invariants (see [`crate::Mesh::validate`]).
     #[error("invalid mesh: {0}")]
     InvalidMesh(String),
+    /// A container (`.lrm`) is malformed: which section, where, and what is wrong.
+    #[error("{0}")]
+    Format(Box<FormatError>),
+    /// A container of a major version this reader does not know.
+    #[error("unsupported container version {major}.{minor} (this reader reads major version {supported})")]
+    UnsupportedVersion {
+        /// The file's major version.
+        major: u16,
+        /// The file's minor version.
+        minor: u16,
+        /// The major version this reader understands.
+        supported: u16,
+    },
+    /// A section marked required that this reader does not understand.
+    #[error("unknown required section `{tag}` (section table entry {index})")]
+    UnknownRequiredSection {
+        /// The section's tag, escaped.
+        tag: String,
+        /// Its position in the section table.
+        index: u32,
+    },
+    /// An input exceeds a configured limit (see [`crate::read::Limits`]).
+    #[error("{what} is {value}, over the limit of {limit}")]
+    LimitExceeded {
+        /// What was too large.
+        what: &'static str,
+        /// Its size.
+        value: u64,
+        /// The limit.
+        limit: u64,
+    },
 }
 
 impl Error {

@@ -11,16 +11,19 @@
 
 pub mod corner_table;
 pub mod error;
+pub mod format;
 pub mod generate;
 pub mod ids;
 pub mod io;
 pub mod lr;
 pub mod mesh;
 pub mod ops;
+pub mod read;
 pub mod topology;
+pub mod write;
 
 pub use corner_table::CornerTable;
-pub use error::{Error, Location, ParseError, Result};
+pub use error::{Error, FormatError, Location, ParseError, Result};
 pub use ids::{Corner, Triangle, Vertex};
 pub use mesh::Mesh;
 pub use ops::CornerOps;

@@ -1,0 +1,272 @@
+//! Writing containers: a mesh in, `.lrm` bytes out (layout: `spec/FORMAT.md`).
+//!
+//! Encoding is deterministic: the same mesh and options give the same bytes, and no Cargo
+//! feature changes them.
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+use crate::corner_table::CornerTable;
+use crate::error::{Error, Result};
+use crate::format::{self, geometry, kind, Tag, ENTRY_LEN, FLAG_REQUIRED, HEADER_LEN};
+use crate::ids::Vertex;
+use crate::lr::{Lr, LrOptions};
+use crate::ops::CornerOps;
+use crate::Mesh;
+
+/// The `META` section: who wrote the file and from what, plus free key/values.
+#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Metadata {
+    /// The program that wrote the file.
+    pub generator: String,
+    /// The file the mesh came from, if any.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub source: Option<String>,
+    /// Free key/values.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub extra: BTreeMap<String, String>,
+}
+
+/// How to encode.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct EncodeOptions {
+    /// Options of the LR construction.
+    pub lr: LrOptions,
+    /// Store the permutations back to the input's vertex and triangle order.
+    pub keep_order: bool,
+    /// Store positions as 16-bit integers in the bounding box (lossy) instead of f32.
+    pub quantize16: bool,
+    /// The metadata to store.
+    pub metadata: Metadata,
+}
+
+impl Default for EncodeOptions {
+    fn default() -> Self {
+        EncodeOptions {
+            lr: LrOptions::default(),
+            keep_order: false,
+            quantize16: false,
+            metadata: Metadata {
+                generator: format!("lrmesh {}", env!("CARGO_PKG_VERSION")),
+                ..Metadata::default()
+            },
+        }
+    }
+}
+
+/// Little-endian section payload builder.
+#[derive(Default)]
+struct Payload(Vec<u8>);
+
+impl Payload {
+    fn u32(&mut self, x: u32) -> &mut Self {
+        self.0.extend_from_slice(&x.to_le_bytes());
+        self
+    }
+    fn u32s(&mut self, xs: impl IntoIterator<Item = u32>) -> &mut Self {
+        for x in xs {
+            self.u32(x);
+        }
+        self
+    }
+    fn f32s(&mut self, xs: impl IntoIterator<Item = f32>) -> &mut Self {
+        for x in xs {
+            self.0.extend_from_slice(&x.to_le_bytes());
+        }
+        self
+    }
+}
+
+/// Encodes `mesh` with standard LR connectivity.
+///
+/// # Errors
+/// [`Error::InvalidMesh`] for a mesh that breaks [`Mesh::validate`] or exceeds the LR's
+/// limits.
+pub fn encode(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<u8>> {
+    mesh.validate()?;
+    let table = CornerTable::from_mesh(mesh)?;
+    let lr = Lr::build(&table, &options.lr)?;
+    let tables = lr.tables();
+    let m = lr.vertex_id_bound();
+
+    // A vertex is a copy when it is not its input vertex's first LR vertex.
+    let original = |v: u32| lr.lr_vertex(lr.input_vertex(Vertex(v))).0;
+    let copies: Vec<(u32, u32)> = (0..m)
+        .filter(|&v| original(v) != v)
+        .map(|v| (v, original(v)))
+        .collect();
+    let per_vertex = |v: u32| lr.input_vertex(Vertex(v)) as usize;
+
+    let mut sections: Vec<(Tag, u32, Vec<u8>)> = Vec::new();
+    let meta = serde_json::to_vec(&options.metadata)
+        .map_err(|e| Error::InvalidMesh(format!("metadata: {e}")))?;
+    sections.push((Tag::META, 0, meta));
+
+    let output_vertices = m - copies.len() as u32;
+    let mut p = Payload::default();
+    p.u32s([
+        m,
+        output_vertices,
+        lr.counts().triangles,
+        lr.kept_aside().len() as u32,
+        kind::LR,
+        0,
+    ]);
+    sections.push((Tag::MESH, FLAG_REQUIRED, p.0));
+
+    let mut p = Payload::default();
+    if options.quantize16 {
+        let (lo, hi) = bounding_box(&mesh.positions);
+        p.u32s([geometry::QUANTIZED16, 0]).f32s(lo).f32s(hi);
+        for v in 0..m {
+            let q = quantize(mesh.positions[per_vertex(v)], lo, hi);
+            for x in q {
+                p.0.extend_from_slice(&x.to_le_bytes());
+            }
+        }
+    } else {
+        p.u32s([geometry::F32, 0]);
+        p.f32s((0..m).flat_map(|v| mesh.positions[per_vertex(v)]));
+    }
+    sections.push((Tag::GEOM, FLAG_REQUIRED, p.0));
+
+    if let Some(normals) = &mesh.normals {
+        let mut p = Payload::default();
+        p.f32s((0..m).flat_map(|v| normals[per_vertex(v)]));
+        sections.push((Tag::NORM, 0, p.0));
+    }
+    if let Some(texcoords) = &mesh.texcoords {
+        let mut p = Payload::default();
+        p.f32s((0..m).flat_map(|v| texcoords[per_vertex(v)]));
+        sections.push((Tag::TEXC, 0, p.0));
+    }
+    if let Some(colors) = &mesh.colors {
+        let bytes = (0..m).flat_map(|v| colors[per_vertex(v)]).collect();
+        sections.push((Tag::COLR, 0, bytes));
+    }
+
+    let mut p = Payload::default();
+    p.u32s([
+        tables.m,
+        tables.m_r,
+        tables.ring_count() as u32,
+        tables.t0_count(),
+        tables.record_count(),
+        0,
+        0,
+        0,
+    ]);
+    for words in [
+        &tables.ring_starts,
+        &tables.ring_last,
+        &tables.ring_rank,
+        &tables.lr,
+        &tables.vo_v,
+        &tables.vo_o,
+        &tables.vo_star,
+        &tables.c,
+    ] {
+        p.u32s(words.iter().copied());
+    }
+    sections.push((Tag::LRTB, FLAG_REQUIRED, p.0));
+
+    if !copies.is_empty() {
+        let mut p = Payload::default();
+        p.u32(copies.len() as u32);
+        p.u32s(copies.iter().flat_map(|&(c, o)| [c, o]));
+        sections.push((Tag::COPY, FLAG_REQUIRED, p.0));
+    }
+    if !lr.kept_aside().is_empty() {
+        let mut p = Payload::default();
+        p.u32(lr.kept_aside().len() as u32);
+        p.u32s(
+            lr.kept_aside()
+                .iter()
+                .flat_map(|&(_, tri)| tri.map(|x| lr.lr_vertex(x).0)),
+        );
+        sections.push((Tag::KEPT, FLAG_REQUIRED, p.0));
+    }
+    if options.keep_order {
+        // Output order: non-copy vertices in LR order; canonical triangles in id order, then
+        // the kept ones.
+        let mut p = Payload::default();
+        let triangles = lr.counts().triangles + lr.kept_aside().len() as u32;
+        p.u32s([output_vertices, triangles]);
+        p.u32s(
+            (0..m)
+                .filter(|&v| original(v) == v)
+                .map(|v| lr.input_vertex(Vertex(v))),
+        );
+        p.u32s(lr.triangles().map(|t| lr.input_triangle(t)));
+        p.u32s(lr.kept_aside().iter().map(|&(input, _)| input));
+        sections.push((Tag::PERM, 0, p.0));
+    }
+    Ok(assemble(&sections))
+}
+
+/// Header, section table and payloads, with their checksums.
+fn assemble(sections: &[(Tag, u32, Vec<u8>)]) -> Vec<u8> {
+    let table_end = HEADER_LEN + ENTRY_LEN * sections.len();
+    let total = table_end + sections.iter().map(|s| s.2.len()).sum::<usize>();
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(&format::MAGIC);
+    out.extend_from_slice(&format::MAJOR.to_le_bytes());
+    out.extend_from_slice(&format::MINOR.to_le_bytes());
+    out.extend_from_slice(&(sections.len() as u32).to_le_bytes());
+    out.extend_from_slice(&(total as u64).to_le_bytes());
+    out.extend_from_slice(&[0; 8]); // table CRC (filled below) and reserved
+    let mut offset = table_end as u64;
+    for (tag, flags, bytes) in sections {
+        out.extend_from_slice(&tag.0);
+        out.extend_from_slice(&flags.to_le_bytes());
+        out.extend_from_slice(&offset.to_le_bytes());
+        out.extend_from_slice(&(bytes.len() as u64).to_le_bytes());
+        out.extend_from_slice(&crc32fast::hash(bytes).to_le_bytes());
+        out.extend_from_slice(&[0; 4]);
+        offset += bytes.len() as u64;
+    }
+    let table_crc = table_checksum(&out[..table_end]);
+    out[24..28].copy_from_slice(&table_crc.to_le_bytes());
+    for (_, _, bytes) in sections {
+        out.extend_from_slice(bytes);
+    }
+    out
+}
+
+/// CRC-32 of the header's first 24 bytes followed by the section table.
+pub(crate) fn table_checksum(header_and_table: &[u8]) -> u32 {
+    let mut h = crc32fast::Hasher::new();
+    h.update(&header_and_table[..24]);
+    h.update(&header_and_table[HEADER_LEN..]);
+    h.finalize()
+}
+
+fn bounding_box(positions: &[[f32; 3]]) -> ([f32; 3], [f32; 3]) {
+    if positions.is_empty() {
+        return ([0.0; 3], [0.0; 3]);
+    }
+    positions
+        .iter()
+        .fold(([f32::MAX; 3], [f32::MIN; 3]), |(lo, hi), p| {
+            (
+                [0, 1, 2].map(|i| lo[i].min(p[i])),
+                [0, 1, 2].map(|i| hi[i].max(p[i])),
+            )
+        })
+}
+
+/// 16-bit coordinates of `p` in the box: `round((p - lo) / (hi - lo) * 65535)`, 0 where the
+/// box is flat.
+fn quantize(p: [f32; 3], lo: [f32; 3], hi: [f32; 3]) -> [u16; 3] {
+    [0, 1, 2].map(|i| {
+        let extent = hi[i] as f64 - lo[i] as f64;
+        if extent > 0.0 {
+            ((p[i] as f64 - lo[i] as f64) / extent * 65535.0)
+                .round()
+                .clamp(0.0, 65535.0) as u16
+        } else {
+            0
+        }
+    })
+}

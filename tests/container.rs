@@ -1,0 +1,286 @@
+//! The `.lrm` container: lossless round trips, the zero-copy view against the owned LR and the
+//! corner table, determinism, and rejection of every damaged byte.
+
+mod common;
+
+use common::{check_against_table, corpus_dir};
+use lrmesh::generate::{self, Rng};
+use lrmesh::io::{read_mesh, ReadOptions};
+use lrmesh::lr::Lr;
+use lrmesh::read::{open, Limits};
+use lrmesh::write::{encode, EncodeOptions};
+use lrmesh::{CornerOps, CornerTable, Error, Mesh};
+use proptest::prelude::*;
+
+fn corpus() -> Vec<(String, Mesh)> {
+    let mut out = Vec::new();
+    for entry in std::fs::read_dir(corpus_dir()).unwrap() {
+        let path = entry.unwrap().path();
+        if lrmesh::io::MeshFormat::from_path(&path).is_ok() {
+            let mesh = read_mesh(&path, &ReadOptions::default()).unwrap().mesh;
+            out.push((
+                path.file_name().unwrap().to_string_lossy().into_owned(),
+                mesh,
+            ));
+        }
+    }
+    out.sort_by(|a, b| a.0.cmp(&b.0));
+    out
+}
+
+/// A triangle as its rotation starting at its smallest entry.
+fn rotated<T: Ord + Copy>(t: [T; 3]) -> [T; 3] {
+    let k = (0..3).min_by_key(|&i| t[i]).unwrap();
+    [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
+}
+
+/// Same triangles, in order, up to rotation; same vertices and attributes.
+fn assert_same_in_order(got: &Mesh, want: &Mesh) {
+    assert_eq!(got.positions, want.positions);
+    assert_eq!(got.normals, want.normals);
+    assert_eq!(got.texcoords, want.texcoords);
+    assert_eq!(got.colors, want.colors);
+    assert_eq!(got.triangles.len(), want.triangles.len());
+    for (k, (g, w)) in got.triangles.iter().zip(&want.triangles).enumerate() {
+        assert_eq!(rotated(*g), rotated(*w), "triangle {k}");
+    }
+}
+
+/// Same triangles on the same positions, in any order: compares the sorted lists of triangles
+/// written as (position, attributes) triples.
+fn assert_same_up_to_order(got: &Mesh, want: &Mesh) {
+    assert_eq!(got.positions.len(), want.positions.len(), "vertex count");
+    let key = |m: &Mesh, v: u32| {
+        let v = v as usize;
+        (
+            m.positions[v].map(f32::to_bits),
+            m.normals.as_ref().map(|n| n[v].map(f32::to_bits)),
+            m.texcoords.as_ref().map(|t| t[v].map(f32::to_bits)),
+            m.colors.as_ref().map(|c| c[v]),
+        )
+    };
+    let triangles = |m: &Mesh| {
+        let mut t: Vec<_> = m
+            .triangles
+            .iter()
+            .map(|t| rotated(t.map(|v| key(m, v))))
+            .collect();
+        t.sort();
+        t
+    };
+    assert_eq!(triangles(got), triangles(want));
+    let vertices = |m: &Mesh| {
+        let mut v: Vec<_> = (0..m.positions.len() as u32).map(|v| key(m, v)).collect();
+        v.sort();
+        v
+    };
+    assert_eq!(
+        vertices(got),
+        vertices(want),
+        "vertex multiset (unreferenced ones too)"
+    );
+}
+
+fn with_attributes(mut mesh: Mesh, seed: u64) -> Mesh {
+    let mut rng = Rng::new(seed);
+    let n = mesh.positions.len();
+    mesh.normals = Some(
+        (0..n)
+            .map(|_| [rng.unit(), rng.unit(), -rng.unit()])
+            .collect(),
+    );
+    mesh.texcoords = Some((0..n).map(|_| [rng.unit(), rng.unit()]).collect());
+    mesh.colors = Some(
+        (0..n)
+            .map(|_| [0; 4].map(|_: u8| rng.below(256) as u8))
+            .collect(),
+    );
+    mesh
+}
+
+fn round_trip(mesh: &Mesh, keep_order: bool) -> Vec<u8> {
+    let options = EncodeOptions {
+        keep_order,
+        ..EncodeOptions::default()
+    };
+    let bytes = encode(mesh, &options).unwrap();
+    let view = open(&bytes, &Limits::default()).unwrap();
+    let back = view.to_mesh();
+    if keep_order {
+        assert_same_in_order(&back, mesh);
+    } else {
+        assert_same_up_to_order(&back, mesh);
+    }
+    bytes
+}
+
+#[test]
+fn corpus_round_trips() {
+    for (name, mesh) in corpus() {
+        eprintln!("{name}");
+        round_trip(&mesh, false);
+        round_trip(&mesh, true);
+        round_trip(&with_attributes(mesh, 5), true);
+    }
+}
+
+#[test]
+fn encoding_is_deterministic() {
+    for (_, mesh) in corpus().into_iter().take(6) {
+        let options = EncodeOptions::default();
+        assert_eq!(
+            encode(&mesh, &options).unwrap(),
+            encode(&mesh, &options).unwrap()
+        );
+    }
+}
+
+#[test]
+fn view_equals_owned_lr_and_corner_table() {
+    for (name, mesh) in corpus() {
+        let options = EncodeOptions::default();
+        let bytes = encode(&mesh, &options).unwrap();
+        let view = open(&bytes, &Limits::default()).unwrap();
+        let table = CornerTable::from_mesh(&mesh).unwrap();
+        let owned = Lr::build(&table, &options.lr).unwrap();
+        let lr = view.lr();
+        assert_eq!(lr.triangle_id_bound(), owned.triangle_id_bound(), "{name}");
+        for c in owned.corners() {
+            assert_eq!(lr.vertex(c), owned.vertex(c), "{name} c.v {c:?}");
+            assert_eq!(lr.opposite(c), owned.opposite(c), "{name} c.o {c:?}");
+            assert_eq!(lr.swing(c), owned.swing(c), "{name} c.s {c:?}");
+        }
+        for v in owned.vertices() {
+            assert_eq!(lr.vertex_corner(v), owned.vertex_corner(v));
+            assert_eq!(
+                view.position(v),
+                mesh.positions[owned.input_vertex(v) as usize]
+            );
+        }
+        // And the view checks out against the corner table on its own.
+        let key = |c: lrmesh::Corner| {
+            (
+                owned.input_triangle(lr.triangle(c)),
+                owned.input_vertex(lr.vertex(c)),
+            )
+        };
+        check_against_table(lr, key, |v| view.position(v), &table, &mesh);
+    }
+}
+
+#[test]
+fn quantized_positions_are_close() {
+    let mesh = read_mesh(&corpus_dir().join("fandisk.off"), &ReadOptions::default())
+        .unwrap()
+        .mesh;
+    let options = EncodeOptions {
+        keep_order: true,
+        quantize16: true,
+        ..EncodeOptions::default()
+    };
+    let bytes = encode(&mesh, &options).unwrap();
+    let view = open(&bytes, &Limits::default()).unwrap();
+    assert!(view.is_quantized());
+    let back = view.to_mesh();
+    let extent = 10.0f32; // fandisk fits in a box well under 10 units a side
+    for (p, q) in back.positions.iter().zip(&mesh.positions) {
+        for i in 0..3 {
+            assert!((p[i] - q[i]).abs() <= extent / 65535.0, "{p:?} {q:?}");
+        }
+    }
+    assert_eq!(back.triangles.len(), mesh.triangles.len());
+    let unquantized = EncodeOptions {
+        quantize16: false,
+        ..options
+    };
+    assert!(bytes.len() < encode(&mesh, &unquantized).unwrap().len());
+}
+
+/// Every single-byte change and every truncation of a small container is an error, never a
+/// panic.
+#[test]
+fn every_damaged_byte_is_rejected() {
+    for name in ["tetrahedron.off", "hedra_open.off"] {
+        let mesh = read_mesh(&corpus_dir().join(name), &ReadOptions::default())
+            .unwrap()
+            .mesh;
+        let bytes = encode(
+            &mesh,
+            &EncodeOptions {
+                keep_order: true,
+                ..EncodeOptions::default()
+            },
+        )
+        .unwrap();
+        open(&bytes, &Limits::default()).unwrap();
+        let mut damaged = bytes.clone();
+        for at in 0..bytes.len() {
+            for x in 1..=255u8 {
+                damaged[at] = bytes[at] ^ x;
+                assert!(
+                    open(&damaged, &Limits::default()).is_err(),
+                    "{name}: byte {at} ^ {x:#x} accepted"
+                );
+            }
+            damaged[at] = bytes[at];
+        }
+        for len in 0..bytes.len() {
+            assert!(
+                open(&bytes[..len], &Limits::default()).is_err(),
+                "{name}: truncated to {len} accepted"
+            );
+        }
+        let mut longer = bytes.clone();
+        longer.push(0);
+        assert!(
+            open(&longer, &Limits::default()).is_err(),
+            "trailing byte accepted"
+        );
+    }
+}
+
+#[test]
+fn errors_name_section_and_offset() {
+    let mesh = generate::torus(4, 5);
+    let bytes = encode(&mesh, &EncodeOptions::default()).unwrap();
+    let mut bad = bytes.clone();
+    let last = bad.len() - 1;
+    bad[last] ^= 1;
+    let message = open(&bad, &Limits::default()).unwrap_err().to_string();
+    assert!(
+        message.contains("checksum mismatch") && message.contains("byte offset"),
+        "{message}"
+    );
+    let mut newer = bytes.clone();
+    newer[8] = 2;
+    assert!(matches!(
+        open(&newer, &Limits::default()),
+        Err(Error::UnsupportedVersion { major: 2, .. })
+    ));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(120))]
+
+    #[test]
+    fn generated_round_trips(around in 3u32..8, along in 3u32..8, holes in 0usize..6,
+                             defects in 0usize..10, seed in any::<u64>(), keep_order in any::<bool>(),
+                             attributes in any::<bool>()) {
+        let mut rng = Rng::new(seed);
+        let mut mesh = generate::torus(around, along);
+        generate::append(&mut mesh, &generate::torus(3, 4));
+        generate::punch_holes(&mut mesh, holes, &mut rng);
+        generate::add_defects(&mut mesh, defects, &mut rng);
+        if attributes {
+            mesh = with_attributes(mesh, seed);
+        }
+        round_trip(&mesh, keep_order);
+    }
+
+    #[test]
+    fn soup_round_trips(vertices in 1u32..20, triangles in 0u32..40, seed in any::<u64>()) {
+        let mesh = generate::soup(vertices, triangles, &mut Rng::new(seed));
+        round_trip(&mesh, true);
+        round_trip(&mesh, false);
+    }
+}
