@@ -42,6 +42,7 @@
 mod build;
 mod tables;
 
+pub(crate) use tables::ring_bits;
 pub use tables::{LeWords, LrTables, Words, IRREGULAR, NULL, VALUE, WART};
 
 use crate::corner_table::NONE;
