@@ -63,6 +63,8 @@ impl fmt::Display for ParseError {
 /// the start of the file, and what is wrong.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct FormatError {
+    /// The file, when known.
+    pub file: Option<PathBuf>,
     /// The section's tag, or `header` / `section table`.
     pub section: String,
     /// Byte offset from the start of the file.
@@ -73,6 +75,9 @@ pub struct FormatError {
 
 impl fmt::Display for FormatError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let Some(p) = &self.file {
+            write!(f, "{}: ", p.display())?;
+        }
         write!(
             f,
             "invalid container: {} at byte offset {}: {}",
@@ -141,12 +146,16 @@ pub enum Error {
 }
 
 impl Error {
-    /// Attaches a file name to a parse error that was produced from bytes alone.
+    /// Attaches a file name to an error that was produced from bytes alone.
     pub fn with_file(self, path: &std::path::Path) -> Error {
         match self {
             Error::Parse(mut e) => {
                 e.file = Some(path.to_path_buf());
                 Error::Parse(e)
+            }
+            Error::Format(mut e) => {
+                e.file = Some(path.to_path_buf());
+                Error::Format(e)
             }
             other => other,
         }

@@ -61,6 +61,7 @@ pub struct Container<'a> {
 
 fn error(section: &str, offset: u64, message: impl Into<String>) -> Error {
     Error::Format(Box::new(FormatError {
+        file: None,
         section: section.to_string(),
         offset,
         message: message.into(),
@@ -938,4 +939,205 @@ fn lr_tables<'a>(container: &Container<'a>, m: u32) -> Result<LrTables<LeWords<'
         }
     }
     Ok(tables)
+}
+
+/// One line of a container's section table, for reports.
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
+pub struct SectionSummary {
+    /// The section's tag.
+    pub tag: String,
+    /// Whether readers must understand it.
+    pub required: bool,
+    /// Offset of its first byte.
+    pub offset: u64,
+    /// Its length in bytes.
+    pub length: u64,
+}
+
+/// What a container holds (`lrmesh info FILE.lrm`). JSON keys are the field names.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct ContainerSummary {
+    /// `major.minor`.
+    pub version: String,
+    /// Total size in bytes.
+    pub bytes: u64,
+    /// The section table.
+    pub sections: Vec<SectionSummary>,
+    /// Connectivity kind (`lr`).
+    pub connectivity: &'static str,
+    /// Vertices once copies are merged back (the input's vertex count).
+    pub vertices: u32,
+    /// Vertices of the LR, pseudo-manifold copies included.
+    pub lr_vertices: u32,
+    /// Triangles, kept-aside degenerate ones included.
+    pub triangles: u64,
+    /// Degenerate triangles kept aside.
+    pub kept_triangles: u32,
+    /// Vertex copies made by the pseudo-manifold conversion.
+    pub vertex_copies: u32,
+    /// Ring vertices.
+    pub ring_vertices: u32,
+    /// Rings.
+    pub rings: u32,
+    /// T0 triangles in VO.
+    pub t0_triangles: u32,
+    /// VO* records (irregular triangles).
+    pub irregular_triangles: u32,
+    /// Bytes of connectivity: sections LRTB, COPY and KEPT.
+    pub connectivity_bytes: u64,
+    /// Connectivity bits per triangle.
+    pub connectivity_bpt: f64,
+    /// References per triangle of the LR tables (LR paper, section 8).
+    pub rpt: f64,
+    /// Positions stored as 16-bit integers (lossy).
+    pub quantized: bool,
+    /// Per-vertex attributes present: `normals`, `texcoords`, `colors`.
+    pub attributes: Vec<&'static str>,
+    /// Whether the input's vertex and triangle order is stored.
+    pub keeps_order: bool,
+    /// The metadata, if any.
+    pub metadata: Option<Metadata>,
+}
+
+impl MeshView<'_> {
+    /// A summary of the container for reports.
+    pub fn summary(&self) -> ContainerSummary {
+        let section_len = |tag: Tag| {
+            self.container
+                .section(tag)
+                .map_or(0, |s| s.bytes.len() as u64)
+        };
+        let connectivity_bytes =
+            section_len(Tag::LRTB) + section_len(Tag::COPY) + section_len(Tag::KEPT);
+        let triangles = self.triangles as u64 + (self.kept.count() / 3) as u64;
+        let per_triangle = |x: f64| {
+            if triangles == 0 {
+                0.0
+            } else {
+                x / triangles as f64
+            }
+        };
+        let m_r = self.lr.ring_vertices();
+        let refs = 2 * m_r as u64
+            + 6 * self.lr.t0_count() as u64
+            + 3 * self.lr.record_count() as u64
+            + (self.lr.m - m_r) as u64;
+        let mut attributes = Vec::new();
+        for (present, name) in [
+            (self.normals.is_some(), "normals"),
+            (self.texcoords.is_some(), "texcoords"),
+            (self.colors.is_some(), "colors"),
+        ] {
+            if present {
+                attributes.push(name);
+            }
+        }
+        ContainerSummary {
+            version: format!("{}.{}", self.container.major, self.container.minor),
+            bytes: self
+                .container
+                .sections
+                .last()
+                .map_or(HEADER_LEN as u64, |s| s.offset + s.bytes.len() as u64),
+            sections: self
+                .container
+                .sections
+                .iter()
+                .map(|s| SectionSummary {
+                    tag: s.tag.name(),
+                    required: s.flags & FLAG_REQUIRED != 0,
+                    offset: s.offset,
+                    length: s.bytes.len() as u64,
+                })
+                .collect(),
+            connectivity: "lr",
+            vertices: self.output_vertices,
+            lr_vertices: self.lr.m,
+            triangles,
+            kept_triangles: (self.kept.count() / 3) as u32,
+            vertex_copies: (self.copies.count() / 2) as u32,
+            ring_vertices: m_r,
+            rings: self.lr.ring_count() as u32,
+            t0_triangles: self.lr.t0_count(),
+            irregular_triangles: self.lr.record_count(),
+            connectivity_bytes,
+            connectivity_bpt: per_triangle(8.0 * connectivity_bytes as f64),
+            rpt: per_triangle(refs as f64),
+            quantized: self.is_quantized(),
+            attributes,
+            keeps_order: self.perm.is_some(),
+            metadata: self.metadata.clone(),
+        }
+    }
+}
+
+impl std::fmt::Display for ContainerSummary {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        writeln!(
+            f,
+            "lrmesh container, version {}, {} bytes",
+            self.version, self.bytes
+        )?;
+        writeln!(f, "sections:")?;
+        for s in &self.sections {
+            let required = if s.required { "required" } else { "optional" };
+            writeln!(
+                f,
+                "  {:<4}  {required}  offset {:>10}  length {:>10}",
+                s.tag, s.offset, s.length
+            )?;
+        }
+        writeln!(f, "connectivity             {}", self.connectivity)?;
+        writeln!(
+            f,
+            "vertices                 {} ({} in the LR, {} copies)",
+            self.vertices, self.lr_vertices, self.vertex_copies
+        )?;
+        writeln!(
+            f,
+            "triangles                {} ({} kept aside)",
+            self.triangles, self.kept_triangles
+        )?;
+        writeln!(
+            f,
+            "rings                    {} through {} vertices",
+            self.rings, self.ring_vertices
+        )?;
+        writeln!(
+            f,
+            "T0 / irregular           {} / {}",
+            self.t0_triangles, self.irregular_triangles
+        )?;
+        writeln!(
+            f,
+            "connectivity             {} bytes, {:.2} bits/triangle, {:.3} references/triangle",
+            self.connectivity_bytes, self.connectivity_bpt, self.rpt
+        )?;
+        writeln!(
+            f,
+            "positions                {}",
+            if self.quantized {
+                "16-bit quantized (lossy)"
+            } else {
+                "f32"
+            }
+        )?;
+        let attributes = if self.attributes.is_empty() {
+            "none".to_string()
+        } else {
+            self.attributes.join(", ")
+        };
+        writeln!(f, "attributes               {attributes}")?;
+        writeln!(f, "input order kept         {}", self.keeps_order)?;
+        if let Some(m) = &self.metadata {
+            writeln!(f, "generator                {}", m.generator)?;
+            if let Some(source) = &m.source {
+                writeln!(f, "source                   {source}")?;
+            }
+            for (k, v) in &m.extra {
+                writeln!(f, "  {k}: {v}")?;
+            }
+        }
+        Ok(())
+    }
 }
