@@ -894,6 +894,10 @@ fn lr_tables<'a>(container: &Container<'a>, m: u32) -> Result<LrTables<LeWords<'
 
     // Behaviour: c.o is an involution across the same edge; v.c is a corner of v; triangles
     // are not degenerate. This makes swings and contour walks terminate.
+    // c.o is an involution: each pair is checked once, from its smaller corner, and the pairs
+    // must account for every corner that has an opposite (a corner whose opposite does not
+    // point back would be left over).
+    let (mut with_opposite, mut pairs) = (0u64, 0u64);
     for t in tables.triangles() {
         let corners = tables.triangle_corners(t);
         let vertices = corners.map(|c| tables.vertex(c));
@@ -907,6 +911,10 @@ fn lr_tables<'a>(container: &Container<'a>, m: u32) -> Result<LrTables<LeWords<'
             let Some(o) = tables.opposite(c) else {
                 continue;
             };
+            with_opposite += 1;
+            if o.0 < c.0 {
+                continue;
+            }
             if !tables.is_corner(o)
                 || tables.opposite(o) != Some(c)
                 || tables.vertex(tables.next(o)) != tables.vertex(tables.prev(c))
@@ -920,7 +928,17 @@ fn lr_tables<'a>(container: &Container<'a>, m: u32) -> Result<LrTables<LeWords<'
                     ),
                 ));
             }
+            pairs += 1;
         }
+    }
+    if with_opposite != 2 * pairs {
+        return Err(f.err(
+            0,
+            format!(
+                "{} corners have an opposite that does not point back",
+                with_opposite - 2 * pairs
+            ),
+        ));
     }
     for v in 0..m {
         let Some(c) = tables.vertex_corner(Vertex(v)) else {

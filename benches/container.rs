@@ -1,0 +1,140 @@
+//! The container in one run: encode, validation (`read::open`) against a plain copy of the same
+//! bytes, decode to a mesh, and the Fig. 10 loops on the zero-copy view against the owned LR
+//! and the corner table.
+//!
+//! `cargo bench --bench container`; `LRMESH_BENCH_TRIANGLES` or `LRMESH_BENCH_MESH=file` as in
+//! the LR bench.
+
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+use lrmesh::io::{read_mesh, ReadOptions};
+use lrmesh::lr::Lr;
+use lrmesh::ops;
+use lrmesh::read::{open, Limits};
+use lrmesh::write::{encode, EncodeOptions};
+use lrmesh::{generate, CornerOps, CornerTable, Mesh};
+
+fn median_time<R>(runs: usize, mut f: impl FnMut() -> R) -> Duration {
+    let mut times: Vec<Duration> = (0..runs)
+        .map(|_| {
+            let start = Instant::now();
+            black_box(f());
+            start.elapsed()
+        })
+        .collect();
+    times.sort();
+    times[runs / 2]
+}
+
+fn load() -> Mesh {
+    if let Ok(path) = std::env::var("LRMESH_BENCH_MESH") {
+        return read_mesh(path.as_ref(), &ReadOptions::default())
+            .unwrap()
+            .mesh;
+    }
+    let triangles = std::env::var("LRMESH_BENCH_TRIANGLES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(2_000_000);
+    generate::irregular_torus(triangles, 1)
+}
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+fn loops<M: CornerOps>(mesh: &M, positions: &[[f32; 3]], runs: usize) -> [Duration; 4] {
+    [
+        median_time(runs, || {
+            mesh.corners().fold(0u32, |a, c| a ^ mesh.vertex(c).0)
+        }),
+        median_time(runs, || {
+            mesh.corners()
+                .fold(0u32, |a, c| a ^ mesh.opposite(c).map_or(0, |o| o.0))
+        }),
+        median_time(runs, || {
+            mesh.vertices().map(|v| ops::valence(mesh, v)).sum::<u32>()
+        }),
+        median_time(runs, || ops::vertex_normals(mesh, positions)),
+    ]
+}
+
+fn main() {
+    let mesh = load();
+    let runs = 7;
+    let options = EncodeOptions::default();
+    let bytes = encode(&mesh, &options).unwrap();
+    println!(
+        "mesh: {} vertices, {} triangles; container {:.1} MiB; median of {runs} runs",
+        mesh.positions.len(),
+        mesh.triangles.len(),
+        bytes.len() as f64 / (1 << 20) as f64
+    );
+    let encode_time = median_time(runs, || encode(&mesh, &options).unwrap());
+    let memcpy = median_time(runs, || bytes.to_vec());
+    let validate = median_time(runs, || {
+        open(&bytes, &Limits::default()).unwrap().triangle_count()
+    });
+    let view = open(&bytes, &Limits::default()).unwrap();
+    let decode = median_time(runs, || view.to_mesh());
+    let gib = |d: Duration| bytes.len() as f64 / d.as_secs_f64() / (1u64 << 30) as f64;
+    println!();
+    println!(
+        "{:<32} {:>10} {:>10} {:>12}",
+        "step", "ms", "GiB/s", "vs memcpy"
+    );
+    println!(
+        "{:<32} {:>10.2} {:>10.2} {:>12}",
+        "memcpy of the bytes (baseline)",
+        ms(memcpy),
+        gib(memcpy),
+        "1.00"
+    );
+    for (name, t) in [
+        ("open + validate", validate),
+        ("decode to an indexed mesh", decode),
+        ("encode (corner table + LR)", encode_time),
+    ] {
+        println!(
+            "{:<32} {:>10.2} {:>10.2} {:>12.1}",
+            name,
+            ms(t),
+            gib(t),
+            t.as_secs_f64() / memcpy.as_secs_f64()
+        );
+    }
+
+    let table = CornerTable::from_mesh(&mesh).unwrap();
+    let owned = Lr::build(&table, &options.lr).unwrap();
+    let positions: Vec<[f32; 3]> = (0..owned.vertex_id_bound())
+        .map(|v| view.position(lrmesh::Vertex(v)))
+        .collect();
+    let ct = loops(&table, &table.extend_to_copies(&mesh.positions), runs);
+    let lr = loops(&owned, &positions, runs);
+    let zero_copy = loops(view.lr(), &positions, runs);
+    println!();
+    println!(
+        "{:<24} {:>10} {:>10} {:>10} {:>12} {:>12}",
+        "Fig. 10 loop (ms)", "CT", "LR owned", "LR view", "owned / CT", "view / CT"
+    );
+    for (i, name) in [
+        "c.v, every corner",
+        "c.o, every corner",
+        "valence, every vertex",
+        "normal, every vertex",
+    ]
+    .iter()
+    .enumerate()
+    {
+        println!(
+            "{:<24} {:>10.2} {:>10.2} {:>10.2} {:>12.2} {:>12.2}",
+            name,
+            ms(ct[i]),
+            ms(lr[i]),
+            ms(zero_copy[i]),
+            lr[i].as_secs_f64() / ct[i].as_secs_f64(),
+            zero_copy[i].as_secs_f64() / ct[i].as_secs_f64()
+        );
+    }
+}
