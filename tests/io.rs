@@ -1260,6 +1260,24 @@ fn ply_malformed() {
     );
 }
 
+#[test]
+fn ply_header_of_many_statements_is_linear() {
+    // 100 000 properties and elements: a quadratic duplicate check would take minutes.
+    let mut h = String::from("ply\nformat ascii 1.0\nelement vertex 0\n");
+    h.push_str(XYZ);
+    for i in 0..50_000 {
+        h.push_str(&format!("property uchar p{i}\n"));
+    }
+    for i in 0..50_000 {
+        h.push_str(&format!("element e{i} 0\n"));
+    }
+    h.push_str("end_header\n");
+    let start = std::time::Instant::now();
+    let l = read(h.as_bytes(), MeshFormat::Ply);
+    assert!(start.elapsed().as_secs() < 10);
+    assert!(l.warnings[0].contains("and 99980 more"), "{:?}", l.warnings);
+}
+
 // ---------------------------------------------------------------------------------------------
 // STL
 

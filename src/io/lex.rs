@@ -245,8 +245,11 @@ mod tests {
         assert_eq!(t.next_token(), Some((&b"b"[..], 7)));
         assert_eq!(t.next_token(), Some((&b"c"[..], 9)));
         t.skip_line();
+        assert_eq!(t.next_token(), Some((&b"d"[..], 10)));
+        t.skip_line();
         assert_eq!(t.next_token(), None);
         assert!(t.at_end());
+        assert_eq!(t.line(), 11);
     }
 
     #[test]

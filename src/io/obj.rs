@@ -168,6 +168,9 @@ pub fn read(bytes: &[u8], _opts: &ReadOptions) -> Result<Loaded> {
                 for (x, tok) in p.iter_mut().zip(args) {
                     *x = lex::parse_f32(tok, "coordinate").map_err(err)?;
                 }
+                if args.len() == 4 {
+                    lex::parse_f32(args[3], "weight `w`").map_err(err)?;
+                }
                 if let Some(c) = color {
                     colors.push(c, n, positions.len() as u64)?;
                 }

@@ -22,6 +22,7 @@
 //! and texture coordinates (`s t`), `uchar` colors (`red green blue alpha`) and faces as
 //! `list uchar uint vertex_indices`.
 
+use std::collections::HashSet;
 use std::io::{BufWriter, Write};
 
 use super::lex::{self, Lines, Tokens};
@@ -166,6 +167,9 @@ fn parse_header(bytes: &[u8]) -> Result<Header> {
     }
     let mut encoding = None;
     let mut elements: Vec<Element> = Vec::new();
+    // Names seen so far, so that a header of many statements stays linear.
+    let mut element_names: HashSet<String> = HashSet::new();
+    let mut property_names: HashSet<(usize, String)> = HashSet::new();
     loop {
         let Some((n, line)) = lines.next_line() else {
             return Err(header_err(
@@ -217,7 +221,7 @@ fn parse_header(bytes: &[u8]) -> Result<Header> {
                 let count =
                     lex::parse_count(count, "element count").map_err(|m| header_err(n, m))?;
                 let name = String::from_utf8_lossy(name).into_owned();
-                if elements.iter().any(|e| e.name == name) {
+                if !element_names.insert(name.clone()) {
                     return Err(header_err(n, format!("a second element `{name}`")));
                 }
                 elements.push(Element {
@@ -228,6 +232,7 @@ fn parse_header(bytes: &[u8]) -> Result<Header> {
                 });
             }
             b"property" => {
+                let element_index = elements.len();
                 let Some(element) = elements.last_mut() else {
                     return Err(header_err(n, "`property` before any `element`"));
                 };
@@ -263,7 +268,7 @@ fn parse_header(bytes: &[u8]) -> Result<Header> {
                     _ => return Err(header_err(n, "expected `property <type> <name>`")),
                 };
                 let name = String::from_utf8_lossy(name).into_owned();
-                if element.props.iter().any(|p| p.name == name) {
+                if !property_names.insert((element_index, name.clone())) {
                     return Err(header_err(
                         n,
                         format!("a second property `{name}` in element `{}`", element.name),
@@ -446,10 +451,20 @@ fn assign_roles(elements: &mut [Element]) -> Result<(Layout, Option<String>)> {
     let warning = (!skipped.is_empty()).then(|| {
         format!(
             "skipped PLY data the mesh does not use: {}",
-            skipped.join(", ")
+            list_some(&skipped)
         )
     });
     Ok((layout, warning))
+}
+
+/// The first few items of a list, joined, with how many more there are.
+fn list_some(items: &[String]) -> String {
+    const SHOWN: usize = 20;
+    let mut s = items[..items.len().min(SHOWN)].join(", ");
+    if items.len() > SHOWN {
+        s.push_str(&format!(" and {} more", items.len() - SHOWN));
+    }
+    s
 }
 
 /// Where the values of the body come from.
