@@ -133,7 +133,7 @@ fn main() {
         counts.t0,
         counts.t0_wart,
         counts.irregular,
-        lr.references(),
+        lr.tables().references(),
         table.v_table().len() + table.o_table().len() + table.c_table().len(),
     );
 

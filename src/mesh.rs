@@ -74,9 +74,9 @@ impl Mesh {
             }
         }
         let check_len = |name: &str, len: Option<usize>| match len {
-            Some(len) if len != n => Err(Error::InvalidMesh(format!(
-                "{len} {name} for {n} vertices"
-            ))),
+            Some(len) if len != n => {
+                Err(Error::InvalidMesh(format!("{len} {name} for {n} vertices")))
+            }
             _ => Ok(()),
         };
         check_len("normals", self.normals.as_ref().map(Vec::len))?;

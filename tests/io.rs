@@ -720,7 +720,7 @@ fn huge_counts_fail_fast() {
     empty_element.truncate(0);
     let mut list = b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uint uint vertex_indices\nend_header\n".to_vec();
     let list_at = list.len() as u64 + 36;
-    list.extend(std::iter::repeat(0u8).take(36));
+    list.extend(std::iter::repeat_n(0u8, 36));
     list.extend(4_000_000_000u32.to_le_bytes());
     list.extend([0u8; 12]);
     assert_err(

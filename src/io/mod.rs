@@ -284,7 +284,7 @@ impl RawColors {
             if !lex::is_integer_syntax(tok) {
                 self.float_syntax = true;
             }
-            if self.max.map_or(true, |(m, _)| v > m) {
+            if self.max.is_none_or(|(m, _)| v > m) {
                 self.max = Some((v, line));
             }
             c[k] = v;

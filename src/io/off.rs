@@ -154,7 +154,7 @@ pub fn read(bytes: &[u8], _opts: &ReadOptions) -> Result<Loaded> {
         nf.checked_mul(MIN_FACE_BYTES)
             .and_then(|b| a.checked_add(b))
     });
-    if needed.map_or(true, |n| n > remaining + 1) {
+    if needed.is_none_or(|n| n > remaining + 1) {
         return Err(count_err(format!(
             "the header declares {nv} vertices and {nf} faces, which need at least {} bytes, \
              but only {remaining} bytes follow",

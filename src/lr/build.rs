@@ -340,8 +340,7 @@ impl Lr {
         // redundant slot (the slot of its first ring edge).
         // T2 triangle -> its redundant slot (the one whose tip is v.n.n).
         let mut t2_redundant = vec![NONE; nt_real];
-        for slot in 0..tables.lr.len() {
-            let tip = slot_tip_corner[slot];
+        for (slot, &tip) in slot_tip_corner.iter().enumerate() {
             if tip != NONE
                 && slots_of[tip as usize / 3] == 2
                 && tables.redundant((slot / 2) as u32, slot % 2)
@@ -359,10 +358,8 @@ impl Lr {
             }
         }
         let mut t0_wart = 0u32;
-        for t in 0..nt_real {
-            if !is_t0[t] {
-                continue;
-            }
+        let t0_before_warts: Vec<usize> = (0..nt_real).filter(|&t| is_t0[t]).collect();
+        for t in t0_before_warts {
             for i in 0..3 {
                 let k = 3 * t as u32 + i;
                 let u = mesh.o[k as usize] / 3;
@@ -398,8 +395,7 @@ impl Lr {
             kept_aside: ct.kept_aside().to_vec(),
         };
         let mut false_redundant = Vec::new();
-        for slot in 0..lr_struct.tables.lr.len() {
-            let tip = slot_tip_corner[slot];
+        for (slot, &tip) in slot_tip_corner.iter().enumerate() {
             let (v, side) = ((slot / 2) as u32, slot % 2);
             if tip != NONE
                 && lr_struct.tables.redundant(v, side)
@@ -419,8 +415,7 @@ impl Lr {
                 ct_to_lr[3 * t as usize + i] = base + 4 * j as u32 + i as u32;
             }
         }
-        for slot in 0..lr_struct.tables.lr.len() {
-            let tip = slot_tip_corner[slot];
+        for (slot, &tip) in slot_tip_corner.iter().enumerate() {
             let (v, side) = ((slot / 2) as u32, slot % 2);
             if tip == NONE || lr_struct.tables.redundant(v, side) {
                 continue;
@@ -460,8 +455,7 @@ impl Lr {
         }
         // Every other slot whose inferred opposites differ from the table's is irregular.
         let mut irregular_without_t0 = false_redundant_count;
-        for slot in 0..lr_struct.tables.lr.len() {
-            let tip = slot_tip_corner[slot];
+        for (slot, &tip) in slot_tip_corner.iter().enumerate() {
             let (v, side) = ((slot / 2) as u32, slot % 2);
             if tip == NONE || lr_struct.tables.redundant(v, side) {
                 continue;
