@@ -10,6 +10,7 @@
 #![forbid(unsafe_code)]
 
 pub mod corner_table;
+pub mod edgebreaker;
 pub mod error;
 pub mod format;
 pub mod generate;

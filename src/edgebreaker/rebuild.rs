@@ -1,0 +1,351 @@
+//! The extended Spirale Reversi pass, shared by encoder and decoder: it reads (decoder) or
+//! writes (encoder) the CLERS stream backwards and rebuilds the connectivity as it goes.
+//!
+//! Corners of decode triangle `t` are `3t` (the tip, facing the gate), `3t + 1` and `3t + 2`.
+//! The right edge of `t` faces `3t + 1`, the left edge `3t + 2`. Around a vertex, `D1` is the
+//! step `x -> x.n.o.n` (across the edge facing `x.n`) and `D2` the step `x -> x.p.o.p`.
+//!
+//! Every gluing must join two free edges of two different triangles, and every corner is given
+//! its vertex exactly once, so the pass is linear and never loops, whatever the input.
+
+use super::coder::{code_uint, Bit, Bits, UintModel};
+use super::{malformed, next, prev, sym, Topology};
+use crate::corner_table::NONE;
+use crate::error::Result;
+
+/// What the encoder knows and the decoder decodes: the symbol of each triangle and the length
+/// of the hole each boundary `S` reaches.
+pub(crate) trait Known {
+    /// The symbol of decode triangle `t`.
+    fn symbol(&mut self, t: u32) -> u8;
+    /// The length of the hole that the `S` at `t` reaches first, 0 if none. Called with
+    /// decreasing `t`.
+    fn hole(&mut self, t: u32) -> u32;
+}
+
+/// The decoder's side of [`Known`]: nothing is known.
+pub(crate) struct Unknown;
+
+impl Known for Unknown {
+    #[inline(always)]
+    fn symbol(&mut self, _: u32) -> u8 {
+        0
+    }
+    #[inline(always)]
+    fn hole(&mut self, _: u32) -> u32 {
+        0
+    }
+}
+
+/// Symbols of context: the last `ORDER` symbols coded.
+const ORDER: u32 = 3;
+const CONTEXTS: usize = 5usize.pow(ORDER);
+
+/// The adaptive model of the CLERS stream.
+struct Model {
+    /// Binary decisions per context: C or not, R or not, S or not, L or E.
+    nodes: Vec<[Bit; 4]>,
+    hist: usize,
+    hole: [Bit; 1],
+    hole_len: UintModel,
+}
+
+impl Model {
+    fn new() -> Model {
+        Model {
+            nodes: vec![[Bit::default(); 4]; CONTEXTS],
+            hist: 0,
+            hole: [Bit::default()],
+            hole_len: UintModel::default(),
+        }
+    }
+
+    #[inline(always)]
+    fn code_symbol<B: Bits>(&mut self, b: &mut B, s: u8) -> u8 {
+        let n = &mut self.nodes[self.hist];
+        if b.bit(&mut n[0], (s != sym::C) as u32) == 0 {
+            return sym::C;
+        }
+        if b.bit(&mut n[1], (s != sym::R) as u32) == 0 {
+            return sym::R;
+        }
+        if b.bit(&mut n[2], (s != sym::S) as u32) == 0 {
+            return sym::S;
+        }
+        if b.bit(&mut n[3], (s != sym::L) as u32) == 0 {
+            sym::L
+        } else {
+            sym::E
+        }
+    }
+
+    #[inline(always)]
+    fn push(&mut self, s: u8) {
+        self.hist = (self.hist * 5 + s as usize) % CONTEXTS;
+    }
+
+    /// Codes whether a non-handle `S` is a boundary `S`, and the length of its hole (at least 2).
+    fn code_hole<B: Bits>(&mut self, b: &mut B, len: u32) -> Option<u32> {
+        if b.bit(&mut self.hole[0], (len != 0) as u32) == 0 {
+            return Some(0);
+        }
+        let l = code_uint(b, &mut self.hole_len, len.wrapping_sub(2) as u64)?;
+        u32::try_from(l).ok()?.checked_add(2)
+    }
+}
+
+/// The connectivity being rebuilt.
+struct State {
+    o: Vec<u32>,
+    v: Vec<[u32; 3]>,
+    /// Vertex ids still to give, counting down.
+    n: u32,
+}
+
+type Step<T = ()> = std::result::Result<T, &'static str>;
+
+impl State {
+    #[inline(always)]
+    fn glue(&mut self, a: u32, b: u32) -> Step {
+        let (ai, bi) = (a as usize, b as usize);
+        if ai >= self.o.len() || bi >= self.o.len() {
+            return Err("gate out of range");
+        }
+        if a / 3 == b / 3 {
+            return Err("edge glued to its own triangle");
+        }
+        if self.o[ai] != NONE || self.o[bi] != NONE {
+            return Err("edge glued twice");
+        }
+        self.o[ai] = b;
+        self.o[bi] = a;
+        Ok(())
+    }
+
+    #[inline(always)]
+    fn assign(&mut self, c: u32, id: u32) -> Step {
+        let slot = &mut self.v[(c / 3) as usize][(c % 3) as usize];
+        if *slot != NONE {
+            return Err("corner reached twice");
+        }
+        *slot = id;
+        Ok(())
+    }
+
+    #[inline(always)]
+    fn take_id(&mut self) -> Step<u32> {
+        self.n = self.n.checked_sub(1).ok_or("more vertices than declared")?;
+        Ok(self.n)
+    }
+
+    /// Gives vertex `id` to `a` and the corners after it in direction D1; returns the last.
+    #[inline(always)]
+    fn walk_assign(&mut self, a: u32, id: u32) -> Step<u32> {
+        self.assign(a, id)?;
+        let mut x = a;
+        loop {
+            let d = self.o[next(x) as usize];
+            if d == NONE {
+                return Ok(x);
+            }
+            x = next(d);
+            self.assign(x, id)?;
+        }
+    }
+
+    /// The last corner from `a` in direction D1 (without numbering), or `None` if the fan
+    /// closes back on `a`. The D1 step is injective, so this ends.
+    fn walk_end(&self, a: u32) -> Option<u32> {
+        let mut x = a;
+        loop {
+            let d = self.o[next(x) as usize];
+            if d == NONE {
+                return Some(x);
+            }
+            x = next(d);
+            if x == a {
+                return None;
+            }
+        }
+    }
+
+    /// Closes the star of the vertex of `a`: numbers all its corners `id` and glues the one
+    /// free edge pair around it, if any.
+    #[inline(always)]
+    fn close_star(&mut self, a: u32, id: u32) -> Step {
+        self.assign(a, id)?;
+        let mut x = a;
+        loop {
+            let d = self.o[next(x) as usize];
+            if d == NONE {
+                break;
+            }
+            x = next(d);
+            if x == a {
+                return Ok(());
+            }
+            self.assign(x, id)?;
+        }
+        let mut y = a;
+        loop {
+            let d = self.o[prev(y) as usize];
+            if d == NONE {
+                break;
+            }
+            y = prev(d);
+            self.assign(y, id)?;
+        }
+        self.glue(next(x), prev(y))
+    }
+
+    /// A boundary `S` with tip corner `c` reaching a hole of `len` vertices: walks backwards
+    /// around the hole from the tip, numbering its vertices, and glues the `S`'s left edge to
+    /// the triangle it meets on the tip's other side.
+    fn hole(&mut self, c: u32, len: u32) -> Step {
+        let x = self.walk_end(c).ok_or("boundary S at a closed fan")?;
+        let mut cur = prev(x);
+        for _ in 1..len {
+            let id = self.take_id()?;
+            cur = prev(self.walk_assign(cur, id)?);
+        }
+        let id = self.take_id()?;
+        let end = self.walk_assign(cur, id)?;
+        self.glue(next(end), c + 2)?;
+        self.walk_assign(c, id)?;
+        Ok(())
+    }
+
+    /// Numbers the external boundary of a component whose first triangle is `t0`, from its
+    /// gate's first vertex on, the way the encoder did.
+    fn external(&mut self, t0: u32) -> Step {
+        if self.o[3 * t0 as usize] != NONE {
+            return Err("first triangle of a component with boundary glued at its gate");
+        }
+        let s = 3 * t0 + 1;
+        let x = self
+            .walk_end(s)
+            .ok_or("external boundary at a closed fan")?;
+        let mut cur = prev(x);
+        while cur != s {
+            let id = self.take_id()?;
+            cur = prev(self.walk_assign(cur, id)?);
+        }
+        let id = self.take_id()?;
+        self.walk_assign(s, id)?;
+        Ok(())
+    }
+}
+
+/// Counts of what the pass met, for statistics.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Tally {
+    /// Boundary `S` met.
+    pub holes: u64,
+}
+
+/// Runs the reverse pass over `nt` triangles and `referenced` vertices with topology `topo`;
+/// returns the triangles in decode order.
+pub(crate) fn rebuild<B: Bits, K: Known>(
+    b: &mut B,
+    k: &mut K,
+    topo: &Topology,
+    nt: u32,
+    referenced: u32,
+) -> Result<(Vec<[u32; 3]>, Tally)> {
+    let mut st = State {
+        o: vec![NONE; 3 * nt as usize],
+        v: vec![[NONE; 3]; nt as usize],
+        n: referenced,
+    };
+    let mut tally = Tally::default();
+    for &(t, c) in &topo.handles {
+        st.glue(3 * t + 2, c)
+            .map_err(|m| malformed(0, format!("handle at triangle {t}: {m}")))?;
+    }
+    let mut model = Model::new();
+    let mut stack: Vec<u32> = Vec::new();
+    let mut hi = topo.handles.len();
+    macro_rules! check {
+        ($e:expr) => {
+            $e.map_err(|m| malformed(b.offset(), m))?
+        };
+    }
+    for comp in topo.comps.iter().rev() {
+        let last = comp.start + comp.size - 1;
+        let first = comp.start + comp.closed as u32;
+        let mut active = NONE;
+        stack.clear();
+        for t in (first..=last).rev() {
+            let handle = hi > 0 && topo.handles[hi - 1].0 == t;
+            let s = if t == last {
+                sym::E
+            } else if handle {
+                hi -= 1;
+                sym::S
+            } else {
+                model.code_symbol(b, k.symbol(t))
+            };
+            model.push(s);
+            let c = 3 * t;
+            match s {
+                sym::C => {
+                    check!(st.glue(c + 1, active));
+                    let id = check!(st.take_id());
+                    check!(st.close_star(c, id));
+                }
+                sym::L => check!(st.glue(c + 1, active)),
+                sym::R => check!(st.glue(c + 2, active)),
+                sym::E => {
+                    if t != last {
+                        stack.push(active);
+                    }
+                }
+                _ => {
+                    check!(st.glue(c + 1, active));
+                    if !handle {
+                        let len = k.hole(t);
+                        let len = model
+                            .code_hole(b, len)
+                            .ok_or_else(|| malformed(b.offset(), "hole length too long"))?;
+                        if len != 0 {
+                            if len < 2 {
+                                return Err(malformed(b.offset(), "hole of fewer than 2 vertices"));
+                            }
+                            tally.holes += 1;
+                            check!(st.hole(c, len));
+                        } else {
+                            let g = stack
+                                .pop()
+                                .ok_or_else(|| malformed(b.offset(), "S without a matching E"))?;
+                            check!(st.glue(c + 2, g));
+                        }
+                    }
+                }
+            }
+            active = c;
+            if b.overrun() {
+                return Err(malformed(b.offset(), "CLERS stream ends early"));
+            }
+        }
+        if !stack.is_empty() {
+            return Err(malformed(b.offset(), "E without a matching S"));
+        }
+        if comp.closed {
+            let c0 = 3 * comp.start;
+            check!(st.glue(c0, active));
+            for corner in [c0 + 2, c0 + 1, c0] {
+                let id = check!(st.take_id());
+                check!(st.close_star(corner, id));
+            }
+        } else {
+            check!(st.external(comp.start));
+        }
+    }
+    if st.n != 0 {
+        return Err(malformed(b.offset(), "fewer vertices than declared"));
+    }
+    if st.v.iter().any(|t| t.contains(&NONE)) {
+        return Err(malformed(b.offset(), "corner without a vertex"));
+    }
+    Ok((st.v, tally))
+}
