@@ -41,7 +41,7 @@ const fn rate_table<const LIMIT: u8>() -> [u8; 64] {
     t
 }
 
-const RATE_LIMIT: u8 = 5;
+const RATE_LIMIT: u8 = 6;
 static RATE: [u8; 64] = rate_table::<RATE_LIMIT>();
 
 /// One adaptive binary model: the probability of a 0 and how many bits it has seen.

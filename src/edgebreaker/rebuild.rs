@@ -38,8 +38,11 @@ impl Known for Unknown {
 }
 
 /// Symbols of context: the last `ORDER` symbols coded.
-const ORDER: u32 = 3;
-const CONTEXTS: usize = 5usize.pow(ORDER);
+const ORDER: u32 = 1;
+const HIST: usize = 5usize.pow(ORDER);
+/// Fan lengths are counted up to this.
+const FAN_CAP: u32 = 8;
+const CONTEXTS: usize = HIST * (FAN_CAP as usize + 1) * (FAN_CAP as usize + 1);
 
 /// The adaptive model of the CLERS stream.
 struct Model {
@@ -61,8 +64,8 @@ impl Model {
     }
 
     #[inline(always)]
-    fn code_symbol<B: Bits>(&mut self, b: &mut B, s: u8) -> u8 {
-        let n = &mut self.nodes[self.hist];
+    fn code_symbol<B: Bits>(&mut self, b: &mut B, s: u8, fans: usize) -> u8 {
+        let n = &mut self.nodes[fans * HIST + self.hist];
         if b.bit(&mut n[0], (s != sym::C) as u32) == 0 {
             return sym::C;
         }
@@ -81,7 +84,7 @@ impl Model {
 
     #[inline(always)]
     fn push(&mut self, s: u8) {
-        self.hist = (self.hist * 5 + s as usize) % CONTEXTS;
+        self.hist = (self.hist * 5 + s as usize) % HIST;
     }
 
     /// Codes whether a non-handle `S` is a boundary `S`, and the length of its hole (at least 2).
@@ -151,6 +154,34 @@ impl State {
             x = next(d);
             self.assign(x, id)?;
         }
+    }
+
+    /// Context of the symbol of the triangle glued to `active`: how many triangles are
+    /// already around the vertex a `C` or `L` would have as tip (direction D1 from
+    /// `active.n`), and around the tip of an `R` (direction D2 from `active.p`), capped.
+    #[inline(always)]
+    fn fans(&self, active: u32) -> usize {
+        let mut x = next(active);
+        let mut f1 = 1;
+        while f1 < FAN_CAP {
+            let d = self.o[next(x) as usize];
+            if d == NONE {
+                break;
+            }
+            x = next(d);
+            f1 += 1;
+        }
+        let mut y = prev(active);
+        let mut f2 = 1;
+        while f2 < FAN_CAP {
+            let d = self.o[prev(y) as usize];
+            if d == NONE {
+                break;
+            }
+            y = prev(d);
+            f2 += 1;
+        }
+        (f1 * (FAN_CAP + 1) + f2) as usize
     }
 
     /// The last corner from `a` in direction D1 (without numbering), or `None` if the fan
@@ -283,7 +314,8 @@ pub(crate) fn rebuild<B: Bits, K: Known>(
                 hi -= 1;
                 sym::S
             } else {
-                model.code_symbol(b, k.symbol(t))
+                let fans = st.fans(active);
+                model.code_symbol(b, k.symbol(t), fans)
             };
             model.push(s);
             let c = 3 * t;
