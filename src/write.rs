@@ -205,8 +205,10 @@ pub fn encode(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<u8>> {
     Ok(assemble(&sections))
 }
 
-/// Header, section table and payloads, with their checksums.
-fn assemble(sections: &[(Tag, u32, Vec<u8>)]) -> Vec<u8> {
+/// A container of the given sections `(tag, flags, payload)`, in this order: header, section
+/// table and payloads with their checksums. For tools that add sections of their own (an
+/// optional section unknown to readers is skipped by them).
+pub fn assemble(sections: &[(Tag, u32, Vec<u8>)]) -> Vec<u8> {
     let table_end = HEADER_LEN + ENTRY_LEN * sections.len();
     let total = table_end + sections.iter().map(|s| s.2.len()).sum::<usize>();
     let mut out = Vec::with_capacity(total);

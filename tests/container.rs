@@ -284,3 +284,34 @@ proptest! {
         round_trip(&mesh, false);
     }
 }
+
+/// Readers skip optional sections they do not know and reject required ones.
+#[test]
+fn unknown_sections() {
+    use lrmesh::format::{Tag, FLAG_REQUIRED};
+    use lrmesh::read::Container;
+    use lrmesh::write::assemble;
+    let mesh = generate::torus(4, 5);
+    let bytes = encode(&mesh, &EncodeOptions::default()).unwrap();
+    let container = Container::parse(&bytes, &Limits::default()).unwrap();
+    let mut sections: Vec<(Tag, u32, Vec<u8>)> = container
+        .sections
+        .iter()
+        .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
+        .collect();
+    assert_eq!(
+        assemble(&sections),
+        bytes,
+        "reassembling gives the same bytes"
+    );
+    sections.insert(1, (Tag(*b"XTRA"), 0, b"later minor versions".to_vec()));
+    let with_optional = assemble(&sections);
+    let view = open(&with_optional, &Limits::default()).unwrap();
+    assert_eq!(view.to_mesh().triangles.len(), mesh.triangles.len());
+    sections[1].1 = FLAG_REQUIRED;
+    let with_required = assemble(&sections);
+    assert!(matches!(
+        open(&with_required, &Limits::default()),
+        Err(Error::UnknownRequiredSection { index: 1, .. })
+    ));
+}
