@@ -188,6 +188,29 @@ fn slot_corners(tip_corner: u32, side: usize) -> [u32; 3] {
     }
 }
 
+/// Ring edges of real triangle `t`: edges to a neighbour on the other side of the ring.
+fn ring_edges(mesh: &Closed, tm: &[bool], t: u32) -> usize {
+    let inside = tm[t as usize];
+    (0..3)
+        .filter(|&i| tm[mesh.o[3 * t as usize + i] as usize / 3] != inside)
+        .count()
+}
+
+/// T0 triangles of a component that no wart can take: those without a T2 neighbour. (A T2 has
+/// one edge off the ring, so no two T0s compete for it, and every other T0 finds a wart.)
+fn t0_after_warts(mesh: &Closed, comp: &Component, tm: &[bool]) -> usize {
+    comp.real_triangles
+        .iter()
+        .filter(|&&t| {
+            ring_edges(mesh, tm, t) == 0
+                && (0..3).all(|i| {
+                    let u = mesh.o[3 * t as usize + i] / 3;
+                    u >= mesh.real_triangles || ring_edges(mesh, tm, u) != 2
+                })
+        })
+        .count()
+}
+
 fn reset(comp: &Component, vm: &mut [bool], tm: &mut [bool]) {
     for &x in &comp.vertices {
         vm[x as usize] = false;
@@ -223,7 +246,8 @@ impl Lr {
         let mut ring_corner = Vec::new(); // per ring vertex: the tip corner of its left slot
         let mut starts = vec![0u32];
         for comp in components(&mesh) {
-            // Fewest isolated vertices first, then fewest T0 triangles (before wart skipping).
+            // Fewest isolated vertices first, then fewest T0 triangles left after wart
+            // skipping (each costs its own six references and makes its neighbours irregular).
             let mut best: Option<((usize, usize), u32)> = None;
             for _ in 0..options.tries.max(1) {
                 let t = comp.real_triangles[rng.below(comp.real_triangles.len() as u32) as usize];
@@ -231,14 +255,7 @@ impl Lr {
                 reset(&comp, &mut vm, &mut tm);
                 ring_expander(&mesh, s, &mut vm, &mut tm);
                 let isolated = comp.vertices.iter().filter(|&&x| !vm[x as usize]).count();
-                let t0 = comp
-                    .real_triangles
-                    .iter()
-                    .filter(|&&t| {
-                        let inside = tm[t as usize];
-                        (0..3).all(|i| tm[mesh.o[3 * t as usize + i] as usize / 3] == inside)
-                    })
-                    .count();
+                let t0 = t0_after_warts(&mesh, &comp, &tm);
                 if best.is_none_or(|(b, _)| (isolated, t0) < b) {
                     best = Some(((isolated, t0), s));
                 }
