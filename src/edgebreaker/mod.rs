@@ -52,7 +52,8 @@
 //! [`decode`] never panics. Declared counts are checked against [`Limits`] and against what the
 //! input can hold (each coded decision costs at least 1/180 bit) before anything is allocated,
 //! every index read from the stream is bounds-checked, every gluing must join two free edges of
-//! two triangles, and every corner is numbered exactly once, so the work is linear too.
+//! two triangles, and at most `3T` corner numberings are allowed (a valid stream numbers each
+//! corner exactly once, which is checked at the end), so the work is linear too.
 
 mod coder;
 mod decode;

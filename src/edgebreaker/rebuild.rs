@@ -5,8 +5,9 @@
 //! The right edge of `t` faces `3t + 1`, the left edge `3t + 2`. Around a vertex, `D1` is the
 //! step `x -> x.n.o.n` (across the edge facing `x.n`) and `D2` the step `x -> x.p.o.p`.
 //!
-//! Every gluing must join two free edges of two different triangles, and every corner is given
-//! its vertex exactly once, so the pass is linear and never loops, whatever the input.
+//! Every gluing must join two free edges of two different triangles, and at most `3 nt`
+//! corners are given a vertex (each exactly once in a valid stream, checked at the end), so
+//! the pass is linear and never loops, whatever the input.
 
 use super::coder::{code_uint, Bit, Bits, UintModel};
 use super::{malformed, next, prev, sym, Topology};
@@ -101,6 +102,13 @@ impl Model {
 struct State {
     o: Vec<u32>,
     v: Vec<[u32; 3]>,
+    /// For a corner at either end of a chain of corners of one vertex linked by glued edges
+    /// (a fan being rebuilt), the corner at the other end; `len` its number of corners
+    /// (saturating). Maintained at every gluing, so that the context needs no walk.
+    end: Vec<u32>,
+    len: Vec<u8>,
+    /// Corner assignments left (see [`State::assign`]).
+    budget: u32,
     /// Vertex ids still to give, counting down.
     n: u32,
 }
@@ -108,6 +116,20 @@ struct State {
 type Step<T = ()> = std::result::Result<T, &'static str>;
 
 impl State {
+    /// Glues without chain bookkeeping (for handle edges, before their triangles exist).
+    fn glue_early(&mut self, a: u32, b: u32) -> Step {
+        let (ai, bi) = (a as usize, b as usize);
+        if ai >= self.o.len() || bi >= self.o.len() || a / 3 == b / 3 {
+            return Err("handle corner out of range");
+        }
+        if self.o[ai] != NONE || self.o[bi] != NONE {
+            return Err("edge glued twice");
+        }
+        self.o[ai] = b;
+        self.o[bi] = a;
+        Ok(())
+    }
+
     #[inline(always)]
     fn glue(&mut self, a: u32, b: u32) -> Step {
         let (ai, bi) = (a as usize, b as usize);
@@ -122,16 +144,51 @@ impl State {
         }
         self.o[ai] = b;
         self.o[bi] = a;
+        self.merge_edge(a, b);
         Ok(())
     }
 
+    /// A new triangle: three chains of one corner.
+    #[inline(always)]
+    fn create(&mut self, t: u32) {
+        for c in 3 * t..3 * t + 3 {
+            self.end[c as usize] = c;
+            self.len[c as usize] = 1;
+        }
+    }
+
+    /// Joins the chain that ends (direction D1) at `a` to the chain that starts at `b`.
+    #[inline(always)]
+    fn link(&mut self, a: u32, b: u32) {
+        let a0 = self.end[a as usize];
+        if a0 == b {
+            return; // the fan closes
+        }
+        let b1 = self.end[b as usize];
+        let l = self.len[a as usize].saturating_add(self.len[b as usize]);
+        self.end[a0 as usize] = b1;
+        self.end[b1 as usize] = a0;
+        self.len[a0 as usize] = l;
+        self.len[b1 as usize] = l;
+    }
+
+    /// Chain bookkeeping for the edge now glued between the edges facing `a` and `b`.
+    #[inline(always)]
+    fn merge_edge(&mut self, a: u32, b: u32) {
+        self.link(prev(b), next(a));
+        self.link(prev(a), next(b));
+    }
+
+    /// Gives corner `c` vertex `id`. A valid stream gives every corner its vertex exactly
+    /// once; the budget of `3 nt` assignments bounds the work on any other (a corner given a
+    /// vertex twice leaves another without one, which the final check reports).
     #[inline(always)]
     fn assign(&mut self, c: u32, id: u32) -> Step {
-        let slot = &mut self.v[(c / 3) as usize][(c % 3) as usize];
-        if *slot != NONE {
+        if self.budget == 0 {
             return Err("corner reached twice");
         }
-        *slot = id;
+        self.budget -= 1;
+        self.v.as_flattened_mut()[c as usize] = id;
         Ok(())
     }
 
@@ -157,30 +214,12 @@ impl State {
     }
 
     /// Context of the symbol of the triangle glued to `active`: how many triangles are
-    /// already around the vertex a `C` or `L` would have as tip (direction D1 from
-    /// `active.n`), and around the tip of an `R` (direction D2 from `active.p`), capped.
+    /// already around the vertex a `C`, `L` or `S` would have as tip (the chain that starts at
+    /// `active.n`), and around the tip of an `R` (the chain that ends at `active.p`), capped.
     #[inline(always)]
     fn fans(&self, active: u32) -> usize {
-        let mut x = next(active);
-        let mut f1 = 1;
-        while f1 < FAN_CAP {
-            let d = self.o[next(x) as usize];
-            if d == NONE {
-                break;
-            }
-            x = next(d);
-            f1 += 1;
-        }
-        let mut y = prev(active);
-        let mut f2 = 1;
-        while f2 < FAN_CAP {
-            let d = self.o[prev(y) as usize];
-            if d == NONE {
-                break;
-            }
-            y = prev(d);
-            f2 += 1;
-        }
+        let f1 = (self.len[next(active) as usize] as u32).min(FAN_CAP);
+        let f2 = (self.len[prev(active) as usize] as u32).min(FAN_CAP);
         (f1 * (FAN_CAP + 1) + f2) as usize
     }
 
@@ -287,10 +326,14 @@ pub(crate) fn rebuild<B: Bits, K: Known>(
         o: vec![NONE; 3 * nt as usize],
         v: vec![[NONE; 3]; nt as usize],
         n: referenced,
+        end: vec![0; 3 * nt as usize],
+        len: vec![0; 3 * nt as usize],
+        budget: 3 * nt,
     };
     let mut tally = Tally::default();
+    // Handle edges are glued up front; their chains are joined when the S is rebuilt.
     for &(t, c) in &topo.handles {
-        st.glue(3 * t + 2, c)
+        st.glue_early(3 * t + 2, c)
             .map_err(|m| malformed(0, format!("handle at triangle {t}: {m}")))?;
     }
     let mut model = Model::new();
@@ -319,6 +362,7 @@ pub(crate) fn rebuild<B: Bits, K: Known>(
             };
             model.push(s);
             let c = 3 * t;
+            st.create(t);
             match s {
                 sym::C => {
                     check!(st.glue(c + 1, active));
@@ -334,7 +378,10 @@ pub(crate) fn rebuild<B: Bits, K: Known>(
                 }
                 _ => {
                     check!(st.glue(c + 1, active));
-                    if !handle {
+                    if handle {
+                        let partner = st.o[c as usize + 2];
+                        st.merge_edge(c + 2, partner);
+                    } else {
                         let len = k.hole(t);
                         let len = model
                             .code_hole(b, len)
@@ -364,6 +411,7 @@ pub(crate) fn rebuild<B: Bits, K: Known>(
         }
         if comp.closed {
             let c0 = 3 * comp.start;
+            st.create(comp.start);
             check!(st.glue(c0, active));
             for corner in [c0 + 2, c0 + 1, c0] {
                 let id = check!(st.take_id());
