@@ -4,6 +4,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
+use lrmesh::edgebreaker::EdgebreakerStats;
 use lrmesh::io::{self, ReadOptions};
 use lrmesh::lr::{Lr, LrOptions, LrStats};
 use lrmesh::read::{self, Limits};
@@ -190,14 +191,16 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
             let table = CornerTable::from_mesh(&mesh)?;
             let lr = Lr::build(&table, &LrOptions { tries, seed })?;
             let stats = LrStats::new(&lr, report.valence6_pct);
+            let edgebreaker = EdgebreakerStats::of(&table)?;
             if json {
-                let out = serde_json::json!({ "lr": stats });
+                let out = serde_json::json!({ "lr": stats, "edgebreaker": edgebreaker });
                 say!(
                     "{}",
                     serde_json::to_string_pretty(&out).expect("stats serialise")
                 );
             } else {
                 show(&stats);
+                show(&edgebreaker);
             }
         }
         Command::Encode {

@@ -60,6 +60,21 @@ fn stats_json_has_lr_keys() {
         assert!(stats["lr"].get(key).is_some(), "missing lr.{key}");
     }
     assert_eq!(stats["lr"]["triangles"], 6400);
+    for key in [
+        "bpt",
+        "clers_bpt",
+        "topology_bytes",
+        "c",
+        "l",
+        "e",
+        "r",
+        "s",
+    ] {
+        assert!(
+            stats["edgebreaker"].get(key).is_some(),
+            "missing edgebreaker.{key}"
+        );
+    }
 }
 
 #[test]

@@ -225,3 +225,30 @@ pub(crate) struct Topology {
     /// Handle `S`: (decode triangle, decode corner glued to its left edge), increasing.
     pub handles: Vec<(u32, u32)>,
 }
+
+impl std::fmt::Display for EdgebreakerStats {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        writeln!(f, "Edgebreaker")?;
+        writeln!(
+            f,
+            "  bits per triangle        {:.3} ({} bytes)",
+            self.bpt, self.bytes
+        )?;
+        writeln!(f, "  CLERS bits per triangle  {:.3}", self.clers_bpt)?;
+        writeln!(
+            f,
+            "  topology stream          {} bytes",
+            self.topology_bytes
+        )?;
+        writeln!(
+            f,
+            "  symbols                  C {} L {} E {} R {} S {} (handle S {}, boundary S {})",
+            self.c, self.l, self.e, self.r, self.s, self.handle_s, self.boundary_s
+        )?;
+        writeln!(
+            f,
+            "  components               {} ({} with a boundary)",
+            self.components, self.boundary_components
+        )
+    }
+}
