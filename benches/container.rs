@@ -112,7 +112,7 @@ fn main() {
         .collect();
     let ct = loops(&table, &table.extend_to_copies(&mesh.positions), runs);
     let lr = loops(&owned, &positions, runs);
-    let zero_copy = loops(view.lr(), &positions, runs);
+    let zero_copy = loops(view.lr().expect("an LR container"), &positions, runs);
     println!();
     println!(
         "{:<24} {:>10} {:>10} {:>10} {:>12} {:>12}",

@@ -37,6 +37,8 @@ impl Tag {
     pub const COLR: Tag = Tag(*b"COLR");
     /// The standard LR tables.
     pub const LRTB: Tag = Tag(*b"LRTB");
+    /// An Edgebreaker stream (`spec/EDGEBREAKER.md`).
+    pub const EBRK: Tag = Tag(*b"EBRK");
     /// Vertex copies made by the pseudo-manifold conversion, with their originals.
     pub const COPY: Tag = Tag(*b"COPY");
     /// Degenerate triangles kept aside.
@@ -58,6 +60,8 @@ impl Tag {
 pub mod kind {
     /// Standard LR in section `LRTB`.
     pub const LR: u32 = 1;
+    /// Edgebreaker in section `EBRK`.
+    pub const EDGEBREAKER: u32 = 2;
 }
 
 /// Position encodings (first field of the `GEOM` section).

@@ -121,8 +121,10 @@ enum Command {
 /// Connectivity representations of a container.
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum Connectivity {
-    /// Standard Laced Ring.
+    /// Standard Laced Ring: random access on the loaded file.
     Lr,
+    /// Edgebreaker: the smallest, decoded sequentially.
+    Edgebreaker,
 }
 
 /// Maps a container file read-only.
@@ -206,7 +208,7 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
         Command::Encode {
             input,
             output,
-            connectivity: Connectivity::Lr,
+            connectivity,
             keep_order,
             quantize,
             tries,
@@ -215,6 +217,10 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
         } => {
             let mesh = load(&input, weld)?;
             let mut options = EncodeOptions {
+                connectivity: match connectivity {
+                    Connectivity::Lr => write::Connectivity::Lr,
+                    Connectivity::Edgebreaker => write::Connectivity::Edgebreaker,
+                },
                 lr: LrOptions { tries, seed },
                 keep_order,
                 quantize16: quantize.is_some(),
@@ -228,7 +234,7 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
             })?;
             let summary = read::open(&bytes, &Limits::default())?.summary();
             let n = summary.triangles.max(1) as f64;
-            let table_refs = 6 * summary.triangles + summary.lr_vertices as u64;
+            let table_refs = 6 * summary.triangles + summary.connectivity_vertices as u64;
             say!("wrote {}: {} bytes", output.display(), bytes.len());
             say!(
                 "{:<28} {:>12} {:>10} {:>10}",
@@ -238,11 +244,11 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
                 "refs/tri"
             );
             say!(
-                "{:<28} {:>12} {:>10.2} {:>10.3}",
-                "LR (this file)",
+                "{:<28} {:>12} {:>10.2} {:>10}",
+                format!("{} (this file)", summary.connectivity),
                 summary.connectivity_bytes,
                 summary.connectivity_bpt,
-                summary.rpt
+                summary.rpt.map_or("-".to_string(), |r| format!("{r:.3}"))
             );
             say!(
                 "{:<28} {:>12} {:>10.2} {:>10.3}",

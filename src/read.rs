@@ -246,7 +246,7 @@ impl<'a> Container<'a> {
 }
 
 /// The sections this reader understands.
-const KNOWN: [Tag; 10] = [
+const KNOWN: [Tag; 11] = [
     Tag::META,
     Tag::MESH,
     Tag::GEOM,
@@ -254,6 +254,7 @@ const KNOWN: [Tag; 10] = [
     Tag::TEXC,
     Tag::COLR,
     Tag::LRTB,
+    Tag::EBRK,
     Tag::COPY,
     Tag::KEPT,
     Tag::PERM,
@@ -275,6 +276,15 @@ pub enum Positions<'a> {
     },
 }
 
+/// The connectivity of a validated container.
+#[derive(Debug, Clone)]
+pub enum ConnectivityView<'a> {
+    /// Standard LR tables, answering the corner operators on the buffer.
+    Lr(LrTables<LeWords<'a>>),
+    /// Edgebreaker, decoded when the container was opened: triangles in decode order.
+    Edgebreaker(Vec<[u32; 3]>),
+}
+
 /// A validated container: every table borrowed from the buffer, the LR tables answering the
 /// corner operators in place.
 #[derive(Debug, Clone)]
@@ -283,7 +293,9 @@ pub struct MeshView<'a> {
     pub container: Container<'a>,
     /// The metadata, if the file has a `META` section.
     pub metadata: Option<Metadata>,
-    lr: LrTables<LeWords<'a>>,
+    connectivity: ConnectivityView<'a>,
+    /// Container vertices (copies included).
+    vertices: u32,
     positions: Positions<'a>,
     normals: Option<&'a [u8]>,
     texcoords: Option<&'a [u8]>,
@@ -380,8 +392,9 @@ impl<'a> MeshView<'a> {
         let output_vertices = mesh.u32(4)?;
         let triangles = mesh.u32(8)?;
         let kept_count = mesh.u32(12)?;
-        if mesh.u32(16)? != kind::LR {
-            return Err(mesh.err(16, format!("unknown connectivity kind {}", mesh.u32(16)?)));
+        let connectivity_kind = mesh.u32(16)?;
+        if connectivity_kind != kind::LR && connectivity_kind != kind::EDGEBREAKER {
+            return Err(mesh.err(16, format!("unknown connectivity kind {connectivity_kind}")));
         }
         if mesh.u32(20)? != 0 {
             return Err(mesh.err(20, "reserved field is not zero"));
@@ -436,14 +449,19 @@ impl<'a> MeshView<'a> {
         let texcoords = attribute(Tag::TEXC, 8, true)?;
         let colors = attribute(Tag::COLR, 4, false)?;
 
-        let lr = lr_tables(&container, m)?;
-        if lr_triangle_count(&lr) != triangles as u64 {
+        let connectivity = if connectivity_kind == kind::LR {
+            ConnectivityView::Lr(lr_tables(&container, m)?)
+        } else {
+            ConnectivityView::Edgebreaker(edgebreaker_triangles(&container, m)?)
+        };
+        let held = match &connectivity {
+            ConnectivityView::Lr(lr) => lr.triangles().count() as u64,
+            ConnectivityView::Edgebreaker(triangles) => triangles.len() as u64,
+        };
+        if held != triangles as u64 {
             return Err(mesh.err(
                 8,
-                format!(
-                    "{triangles} triangles, the LR tables hold {}",
-                    lr_triangle_count(&lr)
-                ),
+                format!("{triangles} triangles, the connectivity holds {held}"),
             ));
         }
 
@@ -529,7 +547,8 @@ impl<'a> MeshView<'a> {
         Ok(MeshView {
             container,
             metadata,
-            lr,
+            connectivity,
+            vertices: m,
             positions,
             normals,
             texcoords,
@@ -542,9 +561,18 @@ impl<'a> MeshView<'a> {
         })
     }
 
-    /// The LR tables, answering the corner operators on the buffer.
-    pub fn lr(&self) -> &LrTables<LeWords<'a>> {
-        &self.lr
+    /// The LR tables, answering the corner operators on the buffer, when the container holds
+    /// standard LR.
+    pub fn lr(&self) -> Option<&LrTables<LeWords<'a>>> {
+        match &self.connectivity {
+            ConnectivityView::Lr(lr) => Some(lr),
+            ConnectivityView::Edgebreaker(_) => None,
+        }
+    }
+
+    /// The connectivity.
+    pub fn connectivity(&self) -> &ConnectivityView<'a> {
+        &self.connectivity
     }
 
     /// The position of vertex `v` (dequantized when stored as 16-bit).
@@ -581,8 +609,8 @@ impl<'a> MeshView<'a> {
     /// Decodes the mesh: copies merged back into their originals, canonical triangles in id
     /// order then the kept-aside ones, attributes; in the input's order when the file keeps it.
     pub fn to_mesh(&self) -> Mesh {
-        let m = self.lr.m as usize;
-        // Output id of every LR vertex: non-copies in order, copies share their original's.
+        let m = self.vertices as usize;
+        // Output id of every container vertex: non-copies in order, copies share their original's.
         let mut output = vec![NONE; m];
         for i in 0..self.copies.count() / 2 {
             output[self.copies.at(2 * i) as usize] = u32::MAX - 1;
@@ -600,11 +628,16 @@ impl<'a> MeshView<'a> {
             let (copy, original) = (self.copies.at(2 * i), self.copies.at(2 * i + 1));
             output[copy as usize] = output[original as usize];
         }
-        let lr = &self.lr;
-        let mut triangles: Vec<[u32; 3]> = lr
-            .triangles()
-            .map(|t| lr.triangle_vertices(t).map(|v| output[v.idx()]))
-            .collect();
+        let mut triangles: Vec<[u32; 3]> = match &self.connectivity {
+            ConnectivityView::Lr(lr) => lr
+                .triangles()
+                .map(|t| lr.triangle_vertices(t).map(|v| output[v.idx()]))
+                .collect(),
+            ConnectivityView::Edgebreaker(decoded) => decoded
+                .iter()
+                .map(|t| t.map(|v| output[v as usize]))
+                .collect(),
+        };
         for i in 0..self.kept.count() / 3 {
             triangles.push([0, 1, 2].map(|k| output[self.kept.at(3 * i + k) as usize]));
         }
@@ -679,8 +712,39 @@ fn check_permutation(fields: &Fields, at: usize, words: LeWords) -> Result<()> {
     Ok(())
 }
 
-fn lr_triangle_count(lr: &LrTables<LeWords>) -> u64 {
-    lr.triangles().count() as u64
+/// The `EBRK` section decoded, with errors placed in the file and the counts checked.
+fn edgebreaker_triangles(container: &Container, m: u32) -> Result<Vec<[u32; 3]>> {
+    let section = *container.required(Tag::EBRK)?;
+    let limits = crate::edgebreaker::Limits::default();
+    let decoded = crate::edgebreaker::decode(section.bytes, &limits).map_err(|e| match e {
+        Error::Parse(p) => {
+            let at = match p.location {
+                crate::error::Location::Byte(b) => b,
+                _ => 0,
+            };
+            error("EBRK", section.offset + at, p.message)
+        }
+        other => other,
+    })?;
+    if decoded.vertex_count != m {
+        return Err(error(
+            "EBRK",
+            section.offset,
+            format!("{} vertices, section MESH says {m}", decoded.vertex_count),
+        ));
+    }
+    if let Some(t) = decoded
+        .triangles
+        .iter()
+        .position(|t| t.iter().any(|&v| v >= m))
+    {
+        return Err(error(
+            "EBRK",
+            section.offset,
+            format!("triangle {t} has a vertex out of range"),
+        ));
+    }
+    Ok(decoded.triangles)
 }
 
 /// The `LRTB` section as tables, after checking every rule the operators rely on.
@@ -981,32 +1045,32 @@ pub struct ContainerSummary {
     pub bytes: u64,
     /// The section table.
     pub sections: Vec<SectionSummary>,
-    /// Connectivity kind (`lr`).
+    /// Connectivity kind: `lr` or `edgebreaker`.
     pub connectivity: &'static str,
     /// Vertices once copies are merged back (the input's vertex count).
     pub vertices: u32,
-    /// Vertices of the LR, pseudo-manifold copies included.
-    pub lr_vertices: u32,
+    /// Vertices of the connectivity, pseudo-manifold copies included.
+    pub connectivity_vertices: u32,
     /// Triangles, kept-aside degenerate ones included.
     pub triangles: u64,
     /// Degenerate triangles kept aside.
     pub kept_triangles: u32,
     /// Vertex copies made by the pseudo-manifold conversion.
     pub vertex_copies: u32,
-    /// Ring vertices.
-    pub ring_vertices: u32,
-    /// Rings.
-    pub rings: u32,
-    /// T0 triangles in VO.
-    pub t0_triangles: u32,
-    /// VO* records (irregular triangles).
-    pub irregular_triangles: u32,
-    /// Bytes of connectivity: sections LRTB, COPY and KEPT.
+    /// LR only: ring vertices.
+    pub ring_vertices: Option<u32>,
+    /// LR only: rings.
+    pub rings: Option<u32>,
+    /// LR only: T0 triangles in VO.
+    pub t0_triangles: Option<u32>,
+    /// LR only: VO* records (irregular triangles).
+    pub irregular_triangles: Option<u32>,
+    /// Bytes of connectivity: the connectivity section, COPY and KEPT.
     pub connectivity_bytes: u64,
     /// Connectivity bits per triangle.
     pub connectivity_bpt: f64,
-    /// References per triangle of the LR tables (LR paper, section 8).
-    pub rpt: f64,
+    /// LR only: references per triangle of the LR tables (LR paper, section 8).
+    pub rpt: Option<f64>,
     /// Positions stored as 16-bit integers (lossy).
     pub quantized: bool,
     /// Per-vertex attributes present: `normals`, `texcoords`, `colors`.
@@ -1025,8 +1089,10 @@ impl MeshView<'_> {
                 .section(tag)
                 .map_or(0, |s| s.bytes.len() as u64)
         };
-        let connectivity_bytes =
-            section_len(Tag::LRTB) + section_len(Tag::COPY) + section_len(Tag::KEPT);
+        let connectivity_bytes = section_len(Tag::LRTB)
+            + section_len(Tag::EBRK)
+            + section_len(Tag::COPY)
+            + section_len(Tag::KEPT);
         let triangles = self.triangles as u64 + (self.kept.count() / 3) as u64;
         let per_triangle = |x: f64| {
             if triangles == 0 {
@@ -1035,11 +1101,15 @@ impl MeshView<'_> {
                 x / triangles as f64
             }
         };
-        let m_r = self.lr.ring_vertices();
-        let refs = 2 * m_r as u64
-            + 6 * self.lr.t0_count() as u64
-            + 3 * self.lr.record_count() as u64
-            + (self.lr.m - m_r) as u64;
+        let lr = self.lr();
+        let rpt = lr.map(|lr| {
+            let m_r = lr.ring_vertices();
+            let refs = 2 * m_r as u64
+                + 6 * lr.t0_count() as u64
+                + 3 * lr.record_count() as u64
+                + (lr.m - m_r) as u64;
+            per_triangle(refs as f64)
+        });
         let mut attributes = Vec::new();
         for (present, name) in [
             (self.normals.is_some(), "normals"),
@@ -1068,19 +1138,19 @@ impl MeshView<'_> {
                     length: s.bytes.len() as u64,
                 })
                 .collect(),
-            connectivity: "lr",
+            connectivity: if lr.is_some() { "lr" } else { "edgebreaker" },
             vertices: self.output_vertices,
-            lr_vertices: self.lr.m,
+            connectivity_vertices: self.vertices,
             triangles,
             kept_triangles: (self.kept.count() / 3) as u32,
             vertex_copies: (self.copies.count() / 2) as u32,
-            ring_vertices: m_r,
-            rings: self.lr.ring_count() as u32,
-            t0_triangles: self.lr.t0_count(),
-            irregular_triangles: self.lr.record_count(),
+            ring_vertices: lr.map(|lr| lr.ring_vertices()),
+            rings: lr.map(|lr| lr.ring_count() as u32),
+            t0_triangles: lr.map(|lr| lr.t0_count()),
+            irregular_triangles: lr.map(|lr| lr.record_count()),
             connectivity_bytes,
             connectivity_bpt: per_triangle(8.0 * connectivity_bytes as f64),
-            rpt: per_triangle(refs as f64),
+            rpt,
             quantized: self.is_quantized(),
             attributes,
             keeps_order: self.perm.is_some(),
@@ -1108,29 +1178,32 @@ impl std::fmt::Display for ContainerSummary {
         writeln!(f, "connectivity             {}", self.connectivity)?;
         writeln!(
             f,
-            "vertices                 {} ({} in the LR, {} copies)",
-            self.vertices, self.lr_vertices, self.vertex_copies
+            "vertices                 {} ({} in the connectivity, {} copies)",
+            self.vertices, self.connectivity_vertices, self.vertex_copies
         )?;
         writeln!(
             f,
             "triangles                {} ({} kept aside)",
             self.triangles, self.kept_triangles
         )?;
-        writeln!(
+        if let (Some(rings), Some(ring_vertices)) = (self.rings, self.ring_vertices) {
+            writeln!(
+                f,
+                "rings                    {rings} through {ring_vertices} vertices"
+            )?;
+        }
+        if let (Some(t0), Some(irregular)) = (self.t0_triangles, self.irregular_triangles) {
+            writeln!(f, "T0 / irregular           {t0} / {irregular}")?;
+        }
+        write!(
             f,
-            "rings                    {} through {} vertices",
-            self.rings, self.ring_vertices
+            "connectivity             {} bytes, {:.2} bits/triangle",
+            self.connectivity_bytes, self.connectivity_bpt
         )?;
-        writeln!(
-            f,
-            "T0 / irregular           {} / {}",
-            self.t0_triangles, self.irregular_triangles
-        )?;
-        writeln!(
-            f,
-            "connectivity             {} bytes, {:.2} bits/triangle, {:.3} references/triangle",
-            self.connectivity_bytes, self.connectivity_bpt, self.rpt
-        )?;
+        match self.rpt {
+            Some(rpt) => writeln!(f, ", {rpt:.3} references/triangle")?,
+            None => writeln!(f)?,
+        }
         writeln!(
             f,
             "positions                {}",

@@ -8,9 +8,10 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use crate::corner_table::CornerTable;
+use crate::edgebreaker;
 use crate::error::{Error, Result};
 use crate::format::{self, geometry, kind, Tag, ENTRY_LEN, FLAG_REQUIRED, HEADER_LEN};
-use crate::ids::Vertex;
+use crate::ids::{Triangle, Vertex};
 use crate::lr::{Lr, LrOptions};
 use crate::ops::CornerOps;
 use crate::Mesh;
@@ -28,9 +29,21 @@ pub struct Metadata {
     pub extra: BTreeMap<String, String>,
 }
 
+/// The connectivity representation a container holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Connectivity {
+    /// Standard LR (section `LRTB`): random access, corner queries on the buffer.
+    #[default]
+    Lr,
+    /// Edgebreaker (section `EBRK`): the smallest, decoded sequentially.
+    Edgebreaker,
+}
+
 /// How to encode.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct EncodeOptions {
+    /// The connectivity representation.
+    pub connectivity: Connectivity,
     /// Options of the LR construction.
     pub lr: LrOptions,
     /// Store the permutations back to the input's vertex and triangle order.
@@ -44,6 +57,7 @@ pub struct EncodeOptions {
 impl Default for EncodeOptions {
     fn default() -> Self {
         EncodeOptions {
+            connectivity: Connectivity::Lr,
             lr: LrOptions::default(),
             keep_order: false,
             quantize16: false,
@@ -78,25 +92,99 @@ impl Payload {
     }
 }
 
-/// Encodes `mesh` with standard LR connectivity.
+/// A connectivity section and how its vertices and triangles relate to the input.
+struct Encoded {
+    kind: u32,
+    tag: Tag,
+    payload: Vec<u8>,
+    /// Container vertex -> input vertex (several for a split vertex).
+    input_vertex: Vec<u32>,
+    /// The connectivity's triangles, in its order -> input triangle.
+    input_triangle: Vec<u32>,
+}
+
+fn encode_lr(table: &CornerTable, options: &LrOptions) -> Result<Encoded> {
+    let lr = Lr::build(table, options)?;
+    let tables = lr.tables();
+    let mut p = Payload::default();
+    p.u32s([
+        tables.m,
+        tables.m_r,
+        tables.ring_count() as u32,
+        tables.t0_count(),
+        tables.record_count(),
+        0,
+        0,
+        0,
+    ]);
+    for words in [
+        &tables.ring_starts,
+        &tables.ring_last,
+        &tables.ring_rank,
+        &tables.lr,
+        &tables.vo_v,
+        &tables.vo_o,
+        &tables.vo_star,
+        &tables.c,
+    ] {
+        p.u32s(words.iter().copied());
+    }
+    Ok(Encoded {
+        kind: kind::LR,
+        tag: Tag::LRTB,
+        payload: p.0,
+        input_vertex: (0..lr.vertex_id_bound())
+            .map(|v| lr.input_vertex(Vertex(v)))
+            .collect(),
+        input_triangle: lr.triangles().map(|t| lr.input_triangle(t)).collect(),
+    })
+}
+
+fn encode_edgebreaker(table: &CornerTable) -> Result<Encoded> {
+    let encoded = edgebreaker::encode(table)?;
+    Ok(Encoded {
+        kind: kind::EDGEBREAKER,
+        tag: Tag::EBRK,
+        payload: encoded.bytes,
+        input_vertex: encoded
+            .vertex_order
+            .iter()
+            .map(|&v| table.original_vertex(Vertex(v)).0)
+            .collect(),
+        input_triangle: encoded
+            .triangle_order
+            .iter()
+            .map(|&t| table.input_triangle(Triangle(t)))
+            .collect(),
+    })
+}
+
+/// Encodes `mesh` with the connectivity `options` choose.
 ///
 /// # Errors
-/// [`Error::InvalidMesh`] for a mesh that breaks [`Mesh::validate`] or exceeds the LR's
-/// limits.
+/// [`Error::InvalidMesh`] for a mesh that breaks [`Mesh::validate`] or exceeds the
+/// representation's limits.
 pub fn encode(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<u8>> {
     mesh.validate()?;
     let table = CornerTable::from_mesh(mesh)?;
-    let lr = Lr::build(&table, &options.lr)?;
-    let tables = lr.tables();
-    let m = lr.vertex_id_bound();
+    let encoded = match options.connectivity {
+        Connectivity::Lr => encode_lr(&table, &options.lr)?,
+        Connectivity::Edgebreaker => encode_edgebreaker(&table)?,
+    };
+    let m = encoded.input_vertex.len() as u32;
+    let per_vertex = |v: u32| encoded.input_vertex[v as usize] as usize;
 
-    // A vertex is a copy when it is not its input vertex's first LR vertex.
-    let original = |v: u32| lr.lr_vertex(lr.input_vertex(Vertex(v))).0;
+    // The first container vertex of each input vertex is its original; later ones are copies.
+    let mut primary = vec![u32::MAX; mesh.positions.len()];
+    for (v, &input) in encoded.input_vertex.iter().enumerate() {
+        if primary[input as usize] == u32::MAX {
+            primary[input as usize] = v as u32;
+        }
+    }
     let copies: Vec<(u32, u32)> = (0..m)
-        .filter(|&v| original(v) != v)
-        .map(|v| (v, original(v)))
+        .map(|v| (v, primary[per_vertex(v)]))
+        .filter(|&(v, original)| original != v)
         .collect();
-    let per_vertex = |v: u32| lr.input_vertex(Vertex(v)) as usize;
 
     let mut sections: Vec<(Tag, u32, Vec<u8>)> = Vec::new();
     let meta = serde_json::to_vec(&options.metadata)
@@ -104,13 +192,14 @@ pub fn encode(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<u8>> {
     sections.push((Tag::META, 0, meta));
 
     let output_vertices = m - copies.len() as u32;
+    let kept = table.kept_aside();
     let mut p = Payload::default();
     p.u32s([
         m,
         output_vertices,
-        lr.counts().triangles,
-        lr.kept_aside().len() as u32,
-        kind::LR,
+        encoded.input_triangle.len() as u32,
+        kept.len() as u32,
+        encoded.kind,
         0,
     ]);
     sections.push((Tag::MESH, FLAG_REQUIRED, p.0));
@@ -146,30 +235,7 @@ pub fn encode(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<u8>> {
         sections.push((Tag::COLR, 0, bytes));
     }
 
-    let mut p = Payload::default();
-    p.u32s([
-        tables.m,
-        tables.m_r,
-        tables.ring_count() as u32,
-        tables.t0_count(),
-        tables.record_count(),
-        0,
-        0,
-        0,
-    ]);
-    for words in [
-        &tables.ring_starts,
-        &tables.ring_last,
-        &tables.ring_rank,
-        &tables.lr,
-        &tables.vo_v,
-        &tables.vo_o,
-        &tables.vo_star,
-        &tables.c,
-    ] {
-        p.u32s(words.iter().copied());
-    }
-    sections.push((Tag::LRTB, FLAG_REQUIRED, p.0));
+    sections.push((encoded.tag, FLAG_REQUIRED, encoded.payload));
 
     if !copies.is_empty() {
         let mut p = Payload::default();
@@ -177,29 +243,28 @@ pub fn encode(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<u8>> {
         p.u32s(copies.iter().flat_map(|&(c, o)| [c, o]));
         sections.push((Tag::COPY, FLAG_REQUIRED, p.0));
     }
-    if !lr.kept_aside().is_empty() {
+    if !kept.is_empty() {
         let mut p = Payload::default();
-        p.u32(lr.kept_aside().len() as u32);
+        p.u32(kept.len() as u32);
         p.u32s(
-            lr.kept_aside()
-                .iter()
-                .flat_map(|&(_, tri)| tri.map(|x| lr.lr_vertex(x).0)),
+            kept.iter()
+                .flat_map(|&(_, tri)| tri.map(|x| primary[x as usize])),
         );
         sections.push((Tag::KEPT, FLAG_REQUIRED, p.0));
     }
     if options.keep_order {
-        // Output order: non-copy vertices in LR order; canonical triangles in id order, then
-        // the kept ones.
+        // Output order: non-copy vertices in container order; the connectivity's triangles in
+        // its order, then the kept ones.
         let mut p = Payload::default();
-        let triangles = lr.counts().triangles + lr.kept_aside().len() as u32;
+        let triangles = (encoded.input_triangle.len() + kept.len()) as u32;
         p.u32s([output_vertices, triangles]);
         p.u32s(
             (0..m)
-                .filter(|&v| original(v) == v)
-                .map(|v| lr.input_vertex(Vertex(v))),
+                .filter(|&v| primary[per_vertex(v)] == v)
+                .map(|v| per_vertex(v) as u32),
         );
-        p.u32s(lr.triangles().map(|t| lr.input_triangle(t)));
-        p.u32s(lr.kept_aside().iter().map(|&(input, _)| input));
+        p.u32s(encoded.input_triangle.iter().copied());
+        p.u32s(kept.iter().map(|&(input, _)| input));
         sections.push((Tag::PERM, 0, p.0));
     }
     Ok(assemble(&sections))

@@ -8,7 +8,7 @@ use lrmesh::generate::{self, Rng};
 use lrmesh::io::{read_mesh, ReadOptions};
 use lrmesh::lr::Lr;
 use lrmesh::read::{open, Limits};
-use lrmesh::write::{encode, EncodeOptions};
+use lrmesh::write::{encode, Connectivity, EncodeOptions};
 use lrmesh::{CornerOps, CornerTable, Error, Mesh};
 use proptest::prelude::*;
 
@@ -99,8 +99,14 @@ fn with_attributes(mut mesh: Mesh, seed: u64) -> Mesh {
 }
 
 fn round_trip(mesh: &Mesh, keep_order: bool) -> Vec<u8> {
+    round_trip_as(mesh, keep_order, Connectivity::Edgebreaker);
+    round_trip_as(mesh, keep_order, Connectivity::Lr)
+}
+
+fn round_trip_as(mesh: &Mesh, keep_order: bool, connectivity: Connectivity) -> Vec<u8> {
     let options = EncodeOptions {
         keep_order,
+        connectivity,
         ..EncodeOptions::default()
     };
     let bytes = encode(mesh, &options).unwrap();
@@ -143,7 +149,7 @@ fn view_equals_owned_lr_and_corner_table() {
         let view = open(&bytes, &Limits::default()).unwrap();
         let table = CornerTable::from_mesh(&mesh).unwrap();
         let owned = Lr::build(&table, &options.lr).unwrap();
-        let lr = view.lr();
+        let lr = view.lr().expect("an LR container");
         assert_eq!(lr.triangle_id_bound(), owned.triangle_id_bound(), "{name}");
         for c in owned.corners() {
             assert_eq!(lr.vertex(c), owned.vertex(c), "{name} c.v {c:?}");
@@ -200,7 +206,11 @@ fn quantized_positions_are_close() {
 /// panic.
 #[test]
 fn every_damaged_byte_is_rejected() {
-    for name in ["tetrahedron.off", "hedra_open.off"] {
+    for (name, connectivity) in [
+        ("tetrahedron.off", Connectivity::Lr),
+        ("hedra_open.off", Connectivity::Lr),
+        ("hedra_open.off", Connectivity::Edgebreaker),
+    ] {
         let mesh = read_mesh(&corpus_dir().join(name), &ReadOptions::default())
             .unwrap()
             .mesh;
@@ -208,6 +218,7 @@ fn every_damaged_byte_is_rejected() {
             &mesh,
             &EncodeOptions {
                 keep_order: true,
+                connectivity,
                 ..EncodeOptions::default()
             },
         )

@@ -9,8 +9,9 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use lrmesh::io::{read_mesh, ReadOptions};
+use lrmesh::read::ConnectivityView;
 use lrmesh::read::{open, Limits};
-use lrmesh::write::{encode, EncodeOptions, Metadata};
+use lrmesh::write::{encode, Connectivity, EncodeOptions, Metadata};
 use lrmesh::CornerOps;
 
 const VECTORS: [&str; 4] = [
@@ -25,8 +26,9 @@ fn dir() -> PathBuf {
 }
 
 /// The options the vectors are encoded with: input order kept, fixed metadata.
-fn options() -> EncodeOptions {
+fn options(connectivity: Connectivity) -> EncodeOptions {
     EncodeOptions {
+        connectivity,
         keep_order: true,
         metadata: Metadata {
             generator: "lrmesh test vectors".into(),
@@ -36,28 +38,44 @@ fn options() -> EncodeOptions {
     }
 }
 
-/// One line per corner of every canonical triangle: `corner vertex opposite` (`-` for none).
+/// For LR, one line per corner of every canonical triangle: `corner vertex opposite` (`-` for
+/// none). For Edgebreaker, one line per decoded triangle: its three vertices, in decode order.
 fn listing(name: &str, bytes: &[u8]) -> String {
     let view = open(bytes, &Limits::default()).unwrap();
-    let lr = view.lr();
     let mut out = String::new();
-    writeln!(
-        out,
-        "# lrmesh test vector {name}: the vertex and opposite of every corner"
-    )
-    .unwrap();
-    writeln!(
-        out,
-        "# {} vertices, {} triangles, {} ring vertices",
-        lr.vertex_id_bound(),
-        view.triangle_count(),
-        lr.ring_vertices()
-    )
-    .unwrap();
-    writeln!(out, "# corner vertex opposite").unwrap();
-    for c in lr.corners() {
-        let o = lr.opposite(c).map_or("-".to_string(), |o| o.0.to_string());
-        writeln!(out, "{} {} {o}", c.0, lr.vertex(c).0).unwrap();
+    match view.connectivity() {
+        ConnectivityView::Lr(lr) => {
+            writeln!(
+                out,
+                "# lrmesh test vector {name}: the vertex and opposite of every corner"
+            )
+            .unwrap();
+            writeln!(
+                out,
+                "# {} vertices, {} triangles, {} ring vertices",
+                lr.vertex_id_bound(),
+                view.triangle_count(),
+                lr.ring_vertices()
+            )
+            .unwrap();
+            writeln!(out, "# corner vertex opposite").unwrap();
+            for c in lr.corners() {
+                let o = lr.opposite(c).map_or("-".to_string(), |o| o.0.to_string());
+                writeln!(out, "{} {} {o}", c.0, lr.vertex(c).0).unwrap();
+            }
+        }
+        ConnectivityView::Edgebreaker(triangles) => {
+            writeln!(
+                out,
+                "# lrmesh test vector {name}: the decoded triangles, in decode order"
+            )
+            .unwrap();
+            writeln!(out, "# {} triangles", triangles.len()).unwrap();
+            writeln!(out, "# triangle a b c").unwrap();
+            for (t, [a, b, c]) in triangles.iter().enumerate() {
+                writeln!(out, "{t} {a} {b} {c}").unwrap();
+            }
+        }
     }
     out
 }
@@ -66,36 +84,41 @@ fn listing(name: &str, bytes: &[u8]) -> String {
 fn vectors_match() {
     let regenerate = std::env::var_os("LRMESH_REGENERATE_VECTORS").is_some();
     for name in VECTORS {
-        let source = dir().join(format!("{name}.off"));
-        let mesh = read_mesh(&source, &ReadOptions::default()).unwrap().mesh;
-        let bytes = encode(&mesh, &options()).unwrap();
-        let lrm = dir().join(format!("{name}.lrm"));
-        let txt = dir().join(format!("{name}.txt"));
-        if regenerate {
-            std::fs::write(&lrm, &bytes).unwrap();
-            std::fs::write(&txt, listing(name, &bytes)).unwrap();
-        }
-        let stored = std::fs::read(&lrm).unwrap();
-        assert_eq!(
-            bytes, stored,
-            "{name}: encoding the source no longer gives the vector's bytes"
-        );
-        let expected = std::fs::read_to_string(&txt).unwrap();
-        assert_eq!(
-            listing(name, &stored),
-            expected,
-            "{name}: corner answers differ"
-        );
-        // Decoding gives back the source exactly (the vectors keep the input order).
-        let back = open(&stored, &Limits::default()).unwrap().to_mesh();
-        assert_eq!(back.positions, mesh.positions, "{name}");
-        for (got, want) in back.triangles.iter().zip(&mesh.triangles) {
-            let rotations = [
-                *want,
-                [want[1], want[2], want[0]],
-                [want[2], want[0], want[1]],
-            ];
-            assert!(rotations.contains(got), "{name}: {got:?} vs {want:?}");
+        for (connectivity, suffix) in [
+            (Connectivity::Lr, ""),
+            (Connectivity::Edgebreaker, ".edgebreaker"),
+        ] {
+            let source = dir().join(format!("{name}.off"));
+            let mesh = read_mesh(&source, &ReadOptions::default()).unwrap().mesh;
+            let bytes = encode(&mesh, &options(connectivity)).unwrap();
+            let lrm = dir().join(format!("{name}{suffix}.lrm"));
+            let txt = dir().join(format!("{name}{suffix}.txt"));
+            if regenerate {
+                std::fs::write(&lrm, &bytes).unwrap();
+                std::fs::write(&txt, listing(name, &bytes)).unwrap();
+            }
+            let stored = std::fs::read(&lrm).unwrap();
+            assert_eq!(
+                bytes, stored,
+                "{name}: encoding the source no longer gives the vector's bytes"
+            );
+            let expected = std::fs::read_to_string(&txt).unwrap();
+            assert_eq!(
+                listing(name, &stored),
+                expected,
+                "{name}: corner answers differ"
+            );
+            // Decoding gives back the source exactly (the vectors keep the input order).
+            let back = open(&stored, &Limits::default()).unwrap().to_mesh();
+            assert_eq!(back.positions, mesh.positions, "{name}");
+            for (got, want) in back.triangles.iter().zip(&mesh.triangles) {
+                let rotations = [
+                    *want,
+                    [want[1], want[2], want[0]],
+                    [want[2], want[0], want[1]],
+                ];
+                assert!(rotations.contains(got), "{name}: {got:?} vs {want:?}");
+            }
         }
     }
 }
