@@ -5,40 +5,17 @@
 //! `cargo bench --bench container`; `LRMESH_BENCH_TRIANGLES` or `LRMESH_BENCH_MESH=file` as in
 //! the LR bench.
 
-use std::hint::black_box;
-use std::time::{Duration, Instant};
+mod common;
 
-use lrmesh::io::{read_mesh, ReadOptions};
+use common::median_time;
+
+use std::time::Duration;
+
 use lrmesh::lr::Lr;
 use lrmesh::ops;
 use lrmesh::read::{open, Limits};
 use lrmesh::write::{encode, EncodeOptions};
-use lrmesh::{generate, CornerOps, CornerTable, Mesh};
-
-fn median_time<R>(runs: usize, mut f: impl FnMut() -> R) -> Duration {
-    let mut times: Vec<Duration> = (0..runs)
-        .map(|_| {
-            let start = Instant::now();
-            black_box(f());
-            start.elapsed()
-        })
-        .collect();
-    times.sort();
-    times[runs / 2]
-}
-
-fn load() -> Mesh {
-    if let Ok(path) = std::env::var("LRMESH_BENCH_MESH") {
-        return read_mesh(path.as_ref(), &ReadOptions::default())
-            .unwrap()
-            .mesh;
-    }
-    let triangles = std::env::var("LRMESH_BENCH_TRIANGLES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(2_000_000);
-    generate::irregular_torus(triangles, 1)
-}
+use lrmesh::{CornerOps, CornerTable};
 
 fn ms(d: Duration) -> f64 {
     d.as_secs_f64() * 1e3
@@ -61,7 +38,7 @@ fn loops<M: CornerOps>(mesh: &M, positions: &[[f32; 3]], runs: usize) -> [Durati
 }
 
 fn main() {
-    let mesh = load();
+    let mesh = common::bench_mesh();
     let runs = 7;
     let options = EncodeOptions::default();
     let bytes = encode(&mesh, &options).unwrap();

@@ -5,25 +5,15 @@
 //! `cargo bench --bench edgebreaker`; `LRMESH_BENCH_TRIANGLES` changes the generated size,
 //! `LRMESH_BENCH_RUNS` the number of runs.
 
-use std::hint::black_box;
+mod common;
+
+use common::median_time;
 use std::path::PathBuf;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use lrmesh::edgebreaker::{decode, encode, Limits};
 use lrmesh::io::{read_mesh, ReadOptions};
 use lrmesh::{generate, CornerTable, Mesh};
-
-fn median_time<R>(runs: usize, mut f: impl FnMut() -> R) -> Duration {
-    let mut times: Vec<Duration> = (0..runs)
-        .map(|_| {
-            let start = Instant::now();
-            black_box(f());
-            start.elapsed()
-        })
-        .collect();
-    times.sort();
-    times[runs / 2]
-}
 
 fn meshes() -> Vec<(String, Mesh)> {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
@@ -48,10 +38,7 @@ fn meshes() -> Vec<(String, Mesh)> {
             }
         }
     }
-    let n = std::env::var("LRMESH_BENCH_TRIANGLES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(2_000_000);
+    let n = common::generated_triangles();
     out.push((
         format!("irregular_torus({n})"),
         generate::irregular_torus(n, 1),

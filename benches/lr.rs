@@ -5,38 +5,15 @@
 //! `cargo bench --bench lr` on a generated irregular mesh of 2M triangles; set
 //! `LRMESH_BENCH_TRIANGLES` for another size, or `LRMESH_BENCH_MESH=path` for a mesh file.
 
-use std::hint::black_box;
-use std::time::{Duration, Instant};
+mod common;
 
-use lrmesh::io::{read_mesh, ReadOptions};
+use common::median_time;
+
+use std::time::Duration;
+
 use lrmesh::lr::{Lr, LrOptions};
 use lrmesh::ops::{self, Plane};
-use lrmesh::{generate, CornerOps, CornerTable, Mesh, Triangle};
-
-fn median_time<R>(runs: usize, mut f: impl FnMut() -> R) -> Duration {
-    let mut times: Vec<Duration> = (0..runs)
-        .map(|_| {
-            let start = Instant::now();
-            black_box(f());
-            start.elapsed()
-        })
-        .collect();
-    times.sort();
-    times[runs / 2]
-}
-
-fn load() -> Mesh {
-    if let Ok(path) = std::env::var("LRMESH_BENCH_MESH") {
-        return read_mesh(path.as_ref(), &ReadOptions::default())
-            .unwrap()
-            .mesh;
-    }
-    let triangles = std::env::var("LRMESH_BENCH_TRIANGLES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(2_000_000);
-    generate::irregular_torus(triangles, 1)
-}
+use lrmesh::{CornerOps, CornerTable, Triangle};
 
 /// Planes across the mesh's bounding box, each with a triangle it cuts.
 fn contour_starts<M: CornerOps>(mesh: &M, positions: &[[f32; 3]]) -> Vec<(Plane, Triangle)> {
@@ -116,7 +93,7 @@ fn loops<M: CornerOps>(
 
 fn main() {
     // `cargo bench` passes `--bench`; this binary takes no options of its own.
-    let mesh = load();
+    let mesh = common::bench_mesh();
     let runs = 7;
     println!(
         "mesh: {} vertices, {} triangles; median of {runs} runs each",
