@@ -20,6 +20,7 @@ pub mod lr;
 pub mod mesh;
 pub mod ops;
 pub mod read;
+pub mod strips;
 pub mod topology;
 pub mod write;
 

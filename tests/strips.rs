@@ -1,0 +1,172 @@
+//! Triangle strips: every input triangle comes back exactly once, oriented, on real and
+//! generated meshes.
+
+mod common;
+
+use common::corpus_dir;
+use lrmesh::generate::{self, Rng};
+use lrmesh::io::{read_mesh, ReadOptions};
+use lrmesh::strips::{stripify, StripOptions, Strips};
+use lrmesh::Mesh;
+use proptest::prelude::*;
+
+/// The triangle rotated so that its smallest index comes first (same orientation).
+fn canonical(t: [u32; 3]) -> [u32; 3] {
+    let k = (0..3).min_by_key(|&i| t[i]).unwrap_or(0);
+    [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
+}
+
+fn check_strips(mesh: &Mesh, options: &StripOptions) -> Strips {
+    let strips = stripify(mesh.positions.len(), &mesh.triangles, options);
+    let back = strips.triangles();
+    assert_eq!(back.len(), mesh.triangles.len(), "triangle count");
+    assert_eq!(strips.triangle_count(), mesh.triangles.len());
+    // Each decoded triangle is the input triangle its order entry names, same orientation.
+    let order: Vec<u32> = strips
+        .strip_order
+        .iter()
+        .chain(&strips.fan_order)
+        .chain(&strips.list_order)
+        .copied()
+        .collect();
+    let mut seen = vec![false; mesh.triangles.len()];
+    for (got, &t) in back.iter().zip(&order) {
+        assert!(!seen[t as usize], "triangle {t} emitted twice");
+        seen[t as usize] = true;
+        assert_eq!(
+            canonical(*got),
+            canonical(mesh.triangles[t as usize]),
+            "triangle {t}"
+        );
+    }
+    assert_eq!(strips.list.len() % 3, 0);
+    strips
+}
+
+fn all_options() -> Vec<StripOptions> {
+    vec![
+        StripOptions::default(),
+        StripOptions {
+            samples: 3,
+            fan_threshold: 6,
+            seed: 7,
+        },
+        StripOptions {
+            samples: 2,
+            fan_threshold: 3,
+            seed: 3,
+        },
+    ]
+}
+
+fn corpus() -> Vec<(String, Mesh)> {
+    let mut out = Vec::new();
+    for entry in std::fs::read_dir(corpus_dir()).unwrap() {
+        let path = entry.unwrap().path();
+        if lrmesh::io::MeshFormat::from_path(&path).is_err() {
+            continue;
+        }
+        let mesh = read_mesh(&path, &ReadOptions::default()).unwrap().mesh;
+        out.push((path.display().to_string(), mesh));
+    }
+    out.sort_by(|a, b| a.0.cmp(&b.0));
+    out
+}
+
+#[test]
+fn corpus_strips() {
+    for (name, mesh) in corpus() {
+        for options in all_options() {
+            let s = check_strips(&mesh, &options);
+            eprintln!(
+                "{name}: {:.3} indices per triangle ({} strips, {} fans, {} lone)",
+                s.indices_per_triangle(),
+                s.strip_count,
+                s.fan_count,
+                s.list.len() / 3
+            );
+        }
+    }
+}
+
+#[test]
+fn small_cases() {
+    let p = vec![[0.0; 3]; 4];
+    for tris in [
+        vec![],
+        vec![[0, 1, 2]],
+        vec![[0, 1, 2], [0, 2, 1]],
+        vec![[0, 1, 2], [2, 1, 3]],
+        vec![[0, 1, 2], [0, 1, 2], [1, 0, 3], [0, 0, 1]],
+        vec![[0, 1, 2], [1, 0, 3], [0, 1, 3], [1, 0, 2]],
+    ] {
+        for options in all_options() {
+            check_strips(&Mesh::new(p.clone(), tris.clone()), &options);
+        }
+    }
+    // Out-of-range indices are emitted as they are, not a panic.
+    let s = stripify(2, &[[0, 1, 5], [0, 1, 2]], &StripOptions::default());
+    assert_eq!(s.list.len(), 6);
+}
+
+#[test]
+fn regular_torus_is_mostly_strips() {
+    let mesh = generate::torus(20, 30);
+    let s = check_strips(&mesh, &StripOptions::default());
+    assert!(
+        s.indices_per_triangle() < 1.4,
+        "{}",
+        s.indices_per_triangle()
+    );
+}
+
+#[test]
+fn high_valence_fan() {
+    // A cone: one apex with 500 triangles, then a cap fan. Exercises the large-bucket path.
+    let k = 500u32;
+    let mut tris = Vec::new();
+    for i in 0..k {
+        tris.push([0, 1 + i, 1 + (i + 1) % k]);
+        tris.push([k + 1, 1 + (i + 1) % k, 1 + i]);
+    }
+    tris.push([0, 1, 2]); // a duplicate: set aside
+    let mesh = Mesh::new(vec![[0.0; 3]; k as usize + 2], tris);
+    for options in all_options() {
+        check_strips(&mesh, &options);
+    }
+}
+
+fn generated(kind: u32, seed: u64, size: u32) -> Mesh {
+    let mut rng = Rng::new(seed);
+    let mut mesh = generate::irregular_torus(size.max(20), seed);
+    match kind {
+        0 => {}
+        1 => generate::punch_holes(&mut mesh, (size / 10) as usize, &mut rng),
+        2 => {
+            let n = mesh.triangles.len();
+            if let Some(u) = generate::far_triangle(&mesh, 0, &mut rng) {
+                generate::add_handle(&mut mesh, 0, u);
+            }
+            let _ = n;
+        }
+        3 => {
+            let other = generate::torus(4, 5);
+            generate::append(&mut mesh, &other);
+        }
+        4 => generate::add_defects(&mut mesh, (size / 8) as usize + 1, &mut rng),
+        _ => mesh = generate::soup(size / 3 + 3, size, &mut rng),
+    }
+    mesh
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    #[test]
+    fn generated_strips(kind in 0u32..6, seed in 0u64..1000, size in 20u32..600) {
+        let mesh = generated(kind, seed, size);
+        for options in all_options() {
+            check_strips(&mesh, &options);
+        }
+    }
+}
