@@ -6,8 +6,9 @@ mod common;
 use common::corpus_dir;
 use lrmesh::generate::{self, Rng};
 use lrmesh::io::{read_mesh, ReadOptions};
-use lrmesh::strips::{stripify, StripOptions, Strips};
-use lrmesh::Mesh;
+use lrmesh::lr::{Lr, LrOptions};
+use lrmesh::strips::{lr_index_list, stripify, StripOptions, Strips};
+use lrmesh::{CornerOps, CornerTable, Mesh};
 use proptest::prelude::*;
 
 /// The triangle rotated so that its smallest index comes first (same orientation).
@@ -89,6 +90,49 @@ fn corpus_strips() {
     }
 }
 
+/// The LR index list expands to exactly the LR's triangles, and through the LR's vertex map
+/// to the input's non-degenerate triangles.
+fn check_lr_index(mesh: &Mesh) -> f64 {
+    let table = CornerTable::from_mesh(mesh).unwrap();
+    let lr = Lr::build(&table, &LrOptions::default()).unwrap();
+    let list = lr_index_list(&lr);
+    let flat = list.triangle_list();
+    assert_eq!(flat.len() % 3, 0);
+    let mut got: Vec<[u32; 3]> = flat
+        .chunks_exact(3)
+        .map(|t| canonical([t[0], t[1], t[2]]))
+        .collect();
+    let mut want: Vec<[u32; 3]> = lr
+        .triangles()
+        .map(|t| canonical(lr.triangle_vertices(t).map(|v| v.0)))
+        .collect();
+    got.sort_unstable();
+    want.sort_unstable();
+    assert_eq!(got, want, "LR index list triangles");
+    let mut input: Vec<[u32; 3]> = got
+        .iter()
+        .map(|t| canonical(t.map(|v| lr.input_vertex(lrmesh::Vertex(v)))))
+        .collect();
+    let mut expected: Vec<[u32; 3]> = mesh
+        .triangles
+        .iter()
+        .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+        .map(|&t| canonical(t))
+        .collect();
+    input.sort_unstable();
+    expected.sort_unstable();
+    assert_eq!(input, expected, "LR index list against the input");
+    list.references_per_triangle()
+}
+
+#[test]
+fn corpus_lr_index_list() {
+    for (name, mesh) in corpus() {
+        let rpt = check_lr_index(&mesh);
+        eprintln!("{name}: LR index list {rpt:.3} references per triangle");
+    }
+}
+
 #[test]
 fn small_cases() {
     let p = vec![[0.0; 3]; 4];
@@ -100,9 +144,11 @@ fn small_cases() {
         vec![[0, 1, 2], [0, 1, 2], [1, 0, 3], [0, 0, 1]],
         vec![[0, 1, 2], [1, 0, 3], [0, 1, 3], [1, 0, 2]],
     ] {
+        let mesh = Mesh::new(p.clone(), tris.clone());
         for options in all_options() {
-            check_strips(&Mesh::new(p.clone(), tris.clone()), &options);
+            check_strips(&mesh, &options);
         }
+        check_lr_index(&mesh);
     }
     // Out-of-range indices are emitted as they are, not a panic.
     let s = stripify(2, &[[0, 1, 5], [0, 1, 2]], &StripOptions::default());
@@ -168,5 +214,6 @@ proptest! {
         for options in all_options() {
             check_strips(&mesh, &options);
         }
+        check_lr_index(&mesh);
     }
 }
