@@ -3,11 +3,11 @@
 
 mod common;
 
-use common::corpus_dir;
+use common::{check_against_table, corpus_dir};
 use lrmesh::generate::{self, Rng};
 use lrmesh::io::{read_mesh, ReadOptions};
 use lrmesh::lr::{Lr, LrOptions};
-use lrmesh::strips::{lr_index_list, stripify, StripOptions, Strips};
+use lrmesh::strips::{lr_index_list, stripify, Cts, StripOptions, Strips};
 use lrmesh::{CornerOps, CornerTable, Mesh};
 use proptest::prelude::*;
 
@@ -125,6 +125,40 @@ fn check_lr_index(mesh: &Mesh) -> f64 {
     list.references_per_triangle()
 }
 
+/// The constrained strips' operators agree with the corner table, corner by corner.
+fn check_cts(mesh: &Mesh, options: &StripOptions) -> Cts {
+    let table = CornerTable::from_mesh(mesh).unwrap();
+    let cts = Cts::build(&table, options).unwrap();
+    let key = |c: lrmesh::Corner| {
+        (
+            cts.input_triangle(cts.triangle(c)),
+            cts.input_vertex(cts.vertex(c)),
+        )
+    };
+    let position = |v: lrmesh::Vertex| mesh.positions[cts.input_vertex(v) as usize];
+    check_against_table(&cts, key, position, &table, mesh);
+    // Every strip starts at an even position, so parity gives orientation.
+    let t = cts.t();
+    for j in 0..t.len() {
+        let starts =
+            t[j] != lrmesh::strips::DELIMITER && (j == 0 || t[j - 1] == lrmesh::strips::DELIMITER);
+        assert!(!starts || j % 2 == 0, "strip starting at odd position {j}");
+    }
+    assert_eq!(cts.a().len(), t.len());
+    cts
+}
+
+#[test]
+fn corpus_cts() {
+    for (name, mesh) in corpus() {
+        let cts = check_cts(&mesh, &StripOptions::default());
+        eprintln!(
+            "{name}: CTS {:.1} bits per triangle",
+            cts.bits_per_triangle()
+        );
+    }
+}
+
 #[test]
 fn corpus_lr_index_list() {
     for (name, mesh) in corpus() {
@@ -149,6 +183,7 @@ fn small_cases() {
             check_strips(&mesh, &options);
         }
         check_lr_index(&mesh);
+        check_cts(&mesh, &StripOptions::default());
     }
     // Out-of-range indices are emitted as they are, not a panic.
     let s = stripify(2, &[[0, 1, 5], [0, 1, 2]], &StripOptions::default());
@@ -215,5 +250,6 @@ proptest! {
             check_strips(&mesh, &options);
         }
         check_lr_index(&mesh);
+        check_cts(&mesh, &StripOptions { samples: 2, ..StripOptions::default() });
     }
 }

@@ -16,10 +16,12 @@
 //! Nothing here panics on any input; meshes need not be manifold or oriented.
 
 mod adjacency;
+mod cts;
 mod lr_index;
 mod stripper;
 
 pub use adjacency::{Adjacency, Node};
+pub use cts::{Cts, DELIMITER};
 pub use lr_index::{lr_index_list, LrIndexList, INDEX_WART};
 
 /// The primitive-restart index that separates strips (and fans) in one index buffer.
