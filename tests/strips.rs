@@ -168,6 +168,27 @@ fn corpus_lr_index_list() {
 }
 
 #[test]
+fn stats_on_corpus_and_empty_mesh() {
+    for (name, mesh) in corpus() {
+        let stats = lrmesh::strips::StripStats::of(&mesh).unwrap();
+        let json = serde_json::to_value(&stats).unwrap();
+        for key in [
+            "indices_per_triangle",
+            "strips",
+            "fans",
+            "isolated_triangles",
+            "cts_bits_per_triangle",
+            "lr_index_rpt",
+        ] {
+            assert!(json.get(key).is_some(), "{name}: {key}");
+        }
+        eprint!("{name}\n{stats}");
+    }
+    let empty = lrmesh::strips::StripStats::of(&Mesh::default()).unwrap();
+    assert_eq!(empty.indices_per_triangle, 0.0);
+}
+
+#[test]
 fn small_cases() {
     let p = vec![[0.0; 3]; 4];
     for tris in [

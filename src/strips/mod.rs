@@ -18,11 +18,13 @@
 mod adjacency;
 mod cts;
 mod lr_index;
+mod stats;
 mod stripper;
 
 pub use adjacency::{Adjacency, Node};
 pub use cts::{Cts, DELIMITER};
 pub use lr_index::{lr_index_list, LrIndexList, INDEX_WART};
+pub use stats::StripStats;
 
 /// The primitive-restart index that separates strips (and fans) in one index buffer.
 pub const RESTART: u32 = u32::MAX;
