@@ -733,15 +733,18 @@ fn edgebreaker_triangles(container: &Container, m: u32) -> Result<Vec<[u32; 3]>>
             format!("{} vertices, section MESH says {m}", decoded.vertex_count),
         ));
     }
-    if let Some(t) = decoded
-        .triangles
-        .iter()
-        .position(|t| t.iter().any(|&v| v >= m))
-    {
+    // A stream can decode to triangles the encoder never writes; the container takes only
+    // what it could have written: vertices in range, no repeated vertex in a triangle.
+    let bad =
+        |t: &[u32; 3]| t.iter().any(|&v| v >= m) || t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+    if let Some(t) = decoded.triangles.iter().position(bad) {
         return Err(error(
             "EBRK",
             section.offset,
-            format!("triangle {t} has a vertex out of range"),
+            format!(
+                "decoded triangle {t} {:?} is degenerate or out of range",
+                decoded.triangles[t]
+            ),
         ));
     }
     Ok(decoded.triangles)

@@ -326,3 +326,45 @@ fn unknown_sections() {
         Err(Error::UnknownRequiredSection { index: 1, .. })
     ));
 }
+
+/// An Edgebreaker stream that decodes to a degenerate triangle (one byte changed from a real
+/// encoding, found while writing spec/EDGEBREAKER.md) is not a valid container.
+#[test]
+fn edgebreaker_stream_decoding_to_a_degenerate_triangle_is_rejected() {
+    use lrmesh::format::{Tag, FLAG_REQUIRED};
+    use lrmesh::read::Container;
+    use lrmesh::write::assemble;
+    let mesh = read_mesh(
+        &corpus_dir().join("hedra_open.off"),
+        &ReadOptions::default(),
+    )
+    .unwrap()
+    .mesh;
+    let options = EncodeOptions {
+        connectivity: Connectivity::Edgebreaker,
+        ..EncodeOptions::default()
+    };
+    let bytes = encode(&mesh, &options).unwrap();
+    let container = Container::parse(&bytes, &Limits::default()).unwrap();
+    let mut sections: Vec<(Tag, u32, Vec<u8>)> = container
+        .sections
+        .iter()
+        .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
+        .collect();
+    let ebrk = sections.iter_mut().find(|s| s.0 == Tag::EBRK).unwrap();
+    assert_eq!(ebrk.1, FLAG_REQUIRED);
+    let forged = [0xeb, 0x01, 0x06, 0x00, 0x06, 0x02, 0x86, 0xa0, 0x2a];
+    let decoded = lrmesh::edgebreaker::decode(&forged, &Default::default()).unwrap();
+    assert!(decoded
+        .triangles
+        .iter()
+        .any(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2]));
+    ebrk.2 = forged.to_vec();
+    let message = open(&assemble(&sections), &Limits::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.contains("EBRK") && message.contains("degenerate"),
+        "{message}"
+    );
+}
