@@ -8,6 +8,7 @@ use lrmesh::edgebreaker::EdgebreakerStats;
 use lrmesh::io::{self, ReadOptions};
 use lrmesh::lr::{Lr, LrOptions, LrStats};
 use lrmesh::read::{self, Limits};
+use lrmesh::strips::StripStats;
 use lrmesh::write::{self, EncodeOptions};
 use lrmesh::{CornerTable, Error, TopologyReport};
 
@@ -194,8 +195,13 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
             let lr = Lr::build(&table, &LrOptions { tries, seed })?;
             let stats = LrStats::new(&lr, report.valence6_pct);
             let edgebreaker = EdgebreakerStats::of(&table)?;
+            let strips = StripStats::of(&mesh)?;
             if json {
-                let out = serde_json::json!({ "lr": stats, "edgebreaker": edgebreaker });
+                let out = serde_json::json!({
+                    "lr": stats,
+                    "edgebreaker": edgebreaker,
+                    "strips": strips,
+                });
                 say!(
                     "{}",
                     serde_json::to_string_pretty(&out).expect("stats serialise")
@@ -203,6 +209,7 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
             } else {
                 show(&stats);
                 show(&edgebreaker);
+                show(&strips);
             }
         }
         Command::Encode {

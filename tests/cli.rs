@@ -75,6 +75,16 @@ fn stats_json_has_lr_keys() {
             "missing edgebreaker.{key}"
         );
     }
+    for key in [
+        "indices_per_triangle",
+        "strips",
+        "fans",
+        "isolated_triangles",
+        "cts_bits_per_triangle",
+        "lr_index_rpt",
+    ] {
+        assert!(stats["strips"].get(key).is_some(), "missing strips.{key}");
+    }
 }
 
 #[test]
