@@ -393,3 +393,42 @@ fn fuzz_regressions_do_not_panic() {
         }
     }
 }
+
+/// A small container claiming billions of vertices or triangles fails at once with an error,
+/// before anything is allocated for them.
+#[test]
+fn hostile_counts_fail_fast() {
+    use lrmesh::format::Tag;
+    use lrmesh::read::Container;
+    use lrmesh::write::assemble;
+    let mesh = generate::torus(3, 4);
+    let bytes = encode(&mesh, &EncodeOptions::default()).unwrap();
+    let container = Container::parse(&bytes, &Limits::default()).unwrap();
+    let sections: Vec<(Tag, u32, Vec<u8>)> = container
+        .sections
+        .iter()
+        .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
+        .collect();
+    for (tag, at, value) in [
+        (Tag::MESH, 0, u32::MAX - 2),   // vertices
+        (Tag::MESH, 8, u32::MAX - 2),   // triangles
+        (Tag::MESH, 12, u32::MAX - 2),  // kept triangles
+        (Tag::LRTB, 0, 3_000_000_000),  // m
+        (Tag::LRTB, 4, 3_000_000_000),  // ring vertices
+        (Tag::LRTB, 12, 3_000_000_000), // T0 triangles
+        (Tag::LRTB, 16, 1_000_000_000), // VO* records
+    ] {
+        let mut forged = sections.clone();
+        let section = forged.iter_mut().find(|s| s.0 == tag).unwrap();
+        section.2[at..at + 4].copy_from_slice(&value.to_le_bytes());
+        let bytes = assemble(&forged);
+        assert!(bytes.len() < 4096);
+        let start = std::time::Instant::now();
+        let error = open(&bytes, &Limits::default()).unwrap_err();
+        assert!(
+            start.elapsed() < std::time::Duration::from_millis(50),
+            "{error}"
+        );
+        assert!(error.to_string().contains("byte offset"), "{error}");
+    }
+}
