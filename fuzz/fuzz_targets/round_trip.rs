@@ -1,7 +1,8 @@
 //! A triangle soup with attributes, made from the fuzzer's bytes, encoded with arbitrary
-//! options and decoded: the same triangles (oriented, up to rotation) on the same positions
-//! with the same attributes, in the input order (the target always keeps it). Encoding never
-//! fails on a valid mesh.
+//! options (connectivity, tries, seed, input order kept or not, positions quantized or not)
+//! and decoded: the same triangles (oriented, up to rotation) on the same positions with the
+//! same attributes; in the input order when it was kept, as the same multiset otherwise;
+//! quantized positions within one step of the grid. Encoding never fails on a valid mesh.
 #![no_main]
 
 use libfuzzer_sys::arbitrary::{Result, Unstructured};
@@ -41,25 +42,78 @@ fn soup(u: &mut Unstructured) -> Result<(Mesh, EncodeOptions)> {
             tries: u.int_in_range(1..=4)?,
             seed: u.arbitrary()?,
         },
-        keep_order: true,
+        keep_order: u.arbitrary()?,
+        quantize16: u.arbitrary()?,
         ..EncodeOptions::default()
     };
     Ok((mesh, options))
 }
 
+/// A triangle as the rotation that starts at its smallest entry.
+fn rotated<T: Ord + Copy>(t: [T; 3]) -> [T; 3] {
+    let k = (0..3).min_by_key(|&i| t[i]).unwrap_or(0);
+    [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
+}
+
 fuzz_target!(|data: &[u8]| {
-    let Ok((mesh, options)) = soup(&mut Unstructured::new(data)) else {
+    let Ok((mut mesh, options)) = soup(&mut Unstructured::new(data)) else {
         return;
     };
     let bytes = encode(&mesh, &options).expect("a valid mesh encodes");
-    let back = open(&bytes, &Limits::default()).expect("what we write opens").to_mesh();
-    assert_eq!(back.positions, mesh.positions);
-    assert_eq!(back.normals, mesh.normals);
-    assert_eq!(back.texcoords, mesh.texcoords);
-    assert_eq!(back.colors, mesh.colors);
-    assert_eq!(back.triangles.len(), mesh.triangles.len());
-    for (got, want) in back.triangles.iter().zip(&mesh.triangles) {
-        let rotations = [*want, [want[1], want[2], want[0]], [want[2], want[0], want[1]]];
-        assert!(rotations.contains(got), "{got:?} is not a rotation of {want:?}");
+    let view = open(&bytes, &Limits::default()).expect("what we write opens");
+    let back = view.to_mesh();
+    assert_eq!(back.positions.len(), mesh.positions.len());
+    if options.quantize16 {
+        // Compare positions on the grid, then use the decoded ones below.
+        let extent = |i: usize| {
+            let (lo, hi) = mesh.positions.iter().fold((f32::MAX, f32::MIN), |(lo, hi), p| {
+                (lo.min(p[i]), hi.max(p[i]))
+            });
+            hi - lo
+        };
+        let step = [0, 1, 2].map(|i| extent(i) / 65535.0 * 1.01 + 1e-4);
+        if options.keep_order {
+            for (p, q) in back.positions.iter().zip(&mesh.positions) {
+                assert!((0..3).all(|i| (p[i] - q[i]).abs() <= step[i]), "{p:?} {q:?}");
+            }
+            mesh.positions = back.positions.clone();
+        } else {
+            // Without the order, positions only identify vertices when not quantized.
+            assert_eq!(back.triangles.len(), mesh.triangles.len());
+            return;
+        }
     }
+    if options.keep_order {
+        assert_eq!(back.positions, mesh.positions);
+        assert_eq!(back.normals, mesh.normals);
+        assert_eq!(back.texcoords, mesh.texcoords);
+        assert_eq!(back.colors, mesh.colors);
+        assert_eq!(back.triangles.len(), mesh.triangles.len());
+        for (got, want) in back.triangles.iter().zip(&mesh.triangles) {
+            assert_eq!(rotated(*got), rotated(*want));
+        }
+        return;
+    }
+    // Without the order: the same vertices and the same triangles, as positions and attributes.
+    let key = |m: &Mesh, v: u32| {
+        let v = v as usize;
+        (
+            m.positions[v].map(f32::to_bits),
+            m.normals.as_ref().map(|n| n[v].map(f32::to_bits)),
+            m.texcoords.as_ref().map(|t| t[v].map(f32::to_bits)),
+            m.colors.as_ref().map(|c| c[v]),
+        )
+    };
+    let triangles = |m: &Mesh| {
+        let mut t: Vec<_> = m.triangles.iter().map(|t| rotated(t.map(|v| key(m, v)))).collect();
+        t.sort();
+        t
+    };
+    assert_eq!(triangles(&back), triangles(&mesh));
+    let vertices = |m: &Mesh| {
+        let mut v: Vec<_> = (0..m.positions.len() as u32).map(|v| key(m, v)).collect();
+        v.sort();
+        v
+    };
+    assert_eq!(vertices(&back), vertices(&mesh));
 });
