@@ -28,10 +28,13 @@ fn corpus() -> Vec<(String, Mesh)> {
     out
 }
 
-/// A triangle as its rotation starting at its smallest entry.
+/// A triangle as its lexicographically smallest rotation, so that two rotations of one
+/// triangle compare equal even when it repeats an entry.
 fn rotated<T: Ord + Copy>(t: [T; 3]) -> [T; 3] {
-    let k = (0..3).min_by_key(|&i| t[i]).unwrap();
-    [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
+    [t, [t[1], t[2], t[0]], [t[2], t[0], t[1]]]
+        .into_iter()
+        .min()
+        .unwrap_or(t)
 }
 
 /// Same triangles, in order, up to rotation; same vertices and attributes.
@@ -431,4 +434,25 @@ fn hostile_counts_fail_fast() {
         );
         assert!(error.to_string().contains("byte offset"), "{error}");
     }
+}
+
+/// Found by the round-trip fuzz target: with duplicate positions, a decoded triangle is a
+/// rotation of the input one that a comparison starting "at the smallest entry" took for a
+/// different triangle. (The library was right; the comparison now takes the smallest rotation.)
+#[test]
+fn duplicate_positions_round_trip_up_to_rotation() {
+    let (r, p, q) = (
+        [89.5, -109.5, 121.7],
+        [121.7f32, 121.7, 121.7],
+        [121.7, 121.7, -105.8],
+    );
+    let mut triangles = vec![[3, 3, 3], [3, 3, 3], [3, 4, 2], [3, 2, 0]];
+    triangles.extend(std::iter::repeat_n([0, 0, 0], 5));
+    let mesh = Mesh::new(vec![r, p, q, p, p], triangles);
+    assert_eq!(
+        rotated([p, q, p].map(|x| x.map(f32::to_bits))),
+        rotated([p, p, q].map(|x| x.map(f32::to_bits)))
+    );
+    round_trip(&mesh, false);
+    round_trip(&mesh, true);
 }
