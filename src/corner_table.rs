@@ -371,18 +371,12 @@ impl CornerOps for CornerTable {
 
     #[inline]
     fn opposite(&self, c: Corner) -> Option<Corner> {
-        match self.o[c.idx()] {
-            NONE => None,
-            d => Some(Corner(d)),
-        }
+        Corner::from_stored(self.o[c.idx()])
     }
 
     #[inline]
     fn vertex_corner(&self, v: Vertex) -> Option<Corner> {
-        match self.c[v.idx()] {
-            NONE => None,
-            c => Some(Corner(c)),
-        }
+        Corner::from_stored(self.c[v.idx()])
     }
 
     #[inline]

@@ -34,3 +34,12 @@ id_type!(
     /// A triangle.
     Triangle
 );
+
+impl Corner {
+    /// A corner id as tables store it: [`NONE`](crate::corner_table::NONE) stands for no
+    /// corner (across a boundary, or for a vertex without triangles).
+    #[inline(always)]
+    pub fn from_stored(raw: u32) -> Option<Corner> {
+        (raw != crate::corner_table::NONE).then_some(Corner(raw))
+    }
+}

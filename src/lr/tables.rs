@@ -395,19 +395,13 @@ impl<W: Words> CornerOps for LrTables<W> {
 
     #[inline(always)]
     fn opposite(&self, c: Corner) -> Option<Corner> {
-        match self.opposite_raw(c.0) {
-            NONE => None,
-            d => Some(Corner(d)),
-        }
+        Corner::from_stored(self.opposite_raw(c.0))
     }
 
     #[inline(always)]
     fn vertex_corner(&self, v: Vertex) -> Option<Corner> {
         if v.0 >= self.m_r {
-            return match self.c.at((v.0 - self.m_r) as usize) {
-                NONE => None,
-                c => Some(Corner(c)),
-            };
+            return Corner::from_stored(self.c.at((v.0 - self.m_r) as usize));
         }
         Some(Corner(self.canonical(8 * v.0)))
     }

@@ -314,10 +314,7 @@ impl CornerOps for Cts {
 
     #[inline]
     fn vertex_corner(&self, v: Vertex) -> Option<Corner> {
-        match self.c[v.idx()] {
-            NONE => None,
-            c => Some(Corner(c)),
-        }
+        Corner::from_stored(self.c[v.idx()])
     }
 
     #[inline]
