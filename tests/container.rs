@@ -303,16 +303,10 @@ proptest! {
 #[test]
 fn unknown_sections() {
     use lrmesh::format::{Tag, FLAG_REQUIRED};
-    use lrmesh::read::Container;
     use lrmesh::write::assemble;
     let mesh = generate::torus(4, 5);
     let bytes = encode(&mesh, &EncodeOptions::default()).unwrap();
-    let container = Container::parse(&bytes, &Limits::default()).unwrap();
-    let mut sections: Vec<(Tag, u32, Vec<u8>)> = container
-        .sections
-        .iter()
-        .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
-        .collect();
+    let mut sections = sections_of(&bytes);
     assert_eq!(
         assemble(&sections),
         bytes,
@@ -335,7 +329,6 @@ fn unknown_sections() {
 #[test]
 fn edgebreaker_stream_decoding_to_a_degenerate_triangle_is_rejected() {
     use lrmesh::format::{Tag, FLAG_REQUIRED};
-    use lrmesh::read::Container;
     use lrmesh::write::assemble;
     let mesh = read_mesh(
         &corpus_dir().join("hedra_open.off"),
@@ -348,12 +341,7 @@ fn edgebreaker_stream_decoding_to_a_degenerate_triangle_is_rejected() {
         ..EncodeOptions::default()
     };
     let bytes = encode(&mesh, &options).unwrap();
-    let container = Container::parse(&bytes, &Limits::default()).unwrap();
-    let mut sections: Vec<(Tag, u32, Vec<u8>)> = container
-        .sections
-        .iter()
-        .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
-        .collect();
+    let mut sections = sections_of(&bytes);
     let ebrk = sections.iter_mut().find(|s| s.0 == Tag::EBRK).unwrap();
     assert_eq!(ebrk.1, FLAG_REQUIRED);
     let forged = [0xeb, 0x01, 0x06, 0x00, 0x06, 0x02, 0x86, 0xa0, 0x2a];
@@ -402,16 +390,10 @@ fn fuzz_regressions_do_not_panic() {
 #[test]
 fn hostile_counts_fail_fast() {
     use lrmesh::format::Tag;
-    use lrmesh::read::Container;
     use lrmesh::write::assemble;
     let mesh = generate::torus(3, 4);
     let bytes = encode(&mesh, &EncodeOptions::default()).unwrap();
-    let container = Container::parse(&bytes, &Limits::default()).unwrap();
-    let sections: Vec<(Tag, u32, Vec<u8>)> = container
-        .sections
-        .iter()
-        .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
-        .collect();
+    let sections = sections_of(&bytes);
     for (tag, at, value) in [
         (Tag::MESH, 0, u32::MAX - 2),   // vertices
         (Tag::MESH, 8, u32::MAX - 2),   // triangles
@@ -455,4 +437,15 @@ fn duplicate_positions_round_trip_up_to_rotation() {
     );
     round_trip(&mesh, false);
     round_trip(&mesh, true);
+}
+
+/// The sections of a valid container as `(tag, flags, payload)`, ready to alter and
+/// [`assemble`](lrmesh::write::assemble) again.
+fn sections_of(bytes: &[u8]) -> Vec<(lrmesh::format::Tag, u32, Vec<u8>)> {
+    lrmesh::read::Container::parse(bytes, &Limits::default())
+        .unwrap()
+        .sections
+        .iter()
+        .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
+        .collect()
 }
