@@ -39,6 +39,8 @@ impl Tag {
     pub const LRTB: Tag = Tag(*b"LRTB");
     /// An Edgebreaker stream (`spec/EDGEBREAKER.md`).
     pub const EBRK: Tag = Tag(*b"EBRK");
+    /// Constrained triangle strips with the adjacent-strips table (`T`, `A`, `C`).
+    pub const STRP: Tag = Tag(*b"STRP");
     /// Vertex copies made by the pseudo-manifold conversion, with their originals.
     pub const COPY: Tag = Tag(*b"COPY");
     /// Degenerate triangles kept aside.
@@ -62,6 +64,8 @@ pub mod kind {
     pub const LR: u32 = 1;
     /// Edgebreaker in section `EBRK`.
     pub const EDGEBREAKER: u32 = 2;
+    /// Constrained triangle strips and the adjacent-strips table in section `STRP`.
+    pub const STRIPS: u32 = 3;
 }
 
 /// Position encodings (first field of the `GEOM` section).
@@ -76,3 +80,5 @@ pub mod geometry {
 pub const MESH_LEN: usize = 24;
 /// Size of the fixed part of the `LRTB` section (eight u32).
 pub const LRTB_HEADER_LEN: usize = 32;
+/// Size of the fixed part of the `STRP` section (four u32).
+pub const STRP_HEADER_LEN: usize = 16;

@@ -13,8 +13,11 @@ use crate::format::{self, geometry, kind, Tag, ENTRY_LEN, FLAG_REQUIRED, HEADER_
 use crate::ids::{Corner, Vertex};
 use crate::lr::{LeWords, LrTables, Words, IRREGULAR, NULL, VALUE, WART};
 use crate::ops::CornerOps;
+use crate::strips::CtsTables;
 use crate::write::Metadata;
 use crate::Mesh;
+
+mod strips;
 
 /// Limits on what a reader accepts, beyond what the file's length bounds anyway.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -246,7 +249,7 @@ impl<'a> Container<'a> {
 }
 
 /// The sections this reader understands.
-const KNOWN: [Tag; 11] = [
+const KNOWN: [Tag; 12] = [
     Tag::META,
     Tag::MESH,
     Tag::GEOM,
@@ -255,6 +258,7 @@ const KNOWN: [Tag; 11] = [
     Tag::COLR,
     Tag::LRTB,
     Tag::EBRK,
+    Tag::STRP,
     Tag::COPY,
     Tag::KEPT,
     Tag::PERM,
@@ -283,6 +287,42 @@ pub enum ConnectivityView<'a> {
     Lr(LrTables<LeWords<'a>>),
     /// Edgebreaker, decoded when the container was opened: triangles in decode order.
     Edgebreaker(Vec<[u32; 3]>),
+    /// Constrained triangle strips and the adjacent-strips table, answering the corner
+    /// operators on the buffer.
+    Strips(CtsTables<LeWords<'a>>),
+}
+
+impl ConnectivityView<'_> {
+    /// The connectivity kind's name: `lr`, `edgebreaker` or `strips`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            ConnectivityView::Lr(_) => "lr",
+            ConnectivityView::Edgebreaker(_) => "edgebreaker",
+            ConnectivityView::Strips(_) => "strips",
+        }
+    }
+
+    /// Number of triangles the connectivity holds.
+    fn triangle_count(&self) -> u64 {
+        match self {
+            ConnectivityView::Lr(lr) => lr.triangles().count() as u64,
+            ConnectivityView::Edgebreaker(triangles) => triangles.len() as u64,
+            ConnectivityView::Strips(strips) => strips.triangle_count() as u64,
+        }
+    }
+
+    /// The triangles as container vertex ids, in the order of `spec/FORMAT.md` section 4.
+    fn for_each_triangle(&self, mut f: impl FnMut([u32; 3])) {
+        match self {
+            ConnectivityView::Lr(lr) => lr
+                .triangles()
+                .for_each(|t| f(lr.triangle_vertices(t).map(|v| v.0))),
+            ConnectivityView::Edgebreaker(decoded) => decoded.iter().for_each(|&t| f(t)),
+            ConnectivityView::Strips(strips) => strips
+                .triangles()
+                .for_each(|t| f(strips.triangle_vertices(t).map(|v| v.0))),
+        }
+    }
 }
 
 /// A validated container: every table borrowed from the buffer, the LR tables answering the
@@ -393,7 +433,7 @@ impl<'a> MeshView<'a> {
         let triangles = mesh.u32(8)?;
         let kept_count = mesh.u32(12)?;
         let connectivity_kind = mesh.u32(16)?;
-        if connectivity_kind != kind::LR && connectivity_kind != kind::EDGEBREAKER {
+        if ![kind::LR, kind::EDGEBREAKER, kind::STRIPS].contains(&connectivity_kind) {
             return Err(mesh.err(16, format!("unknown connectivity kind {connectivity_kind}")));
         }
         if mesh.u32(20)? != 0 {
@@ -449,15 +489,12 @@ impl<'a> MeshView<'a> {
         let texcoords = attribute(Tag::TEXC, 8, true)?;
         let colors = attribute(Tag::COLR, 4, false)?;
 
-        let connectivity = if connectivity_kind == kind::LR {
-            ConnectivityView::Lr(lr_tables(&container, m)?)
-        } else {
-            ConnectivityView::Edgebreaker(edgebreaker_triangles(&container, m)?)
+        let connectivity = match connectivity_kind {
+            kind::LR => ConnectivityView::Lr(lr_tables(&container, m)?),
+            kind::STRIPS => ConnectivityView::Strips(strips::strips_tables(&container, m)?),
+            _ => ConnectivityView::Edgebreaker(edgebreaker_triangles(&container, m)?),
         };
-        let held = match &connectivity {
-            ConnectivityView::Lr(lr) => lr.triangles().count() as u64,
-            ConnectivityView::Edgebreaker(triangles) => triangles.len() as u64,
-        };
+        let held = connectivity.triangle_count();
         if held != triangles as u64 {
             return Err(mesh.err(
                 8,
@@ -566,7 +603,16 @@ impl<'a> MeshView<'a> {
     pub fn lr(&self) -> Option<&LrTables<LeWords<'a>>> {
         match &self.connectivity {
             ConnectivityView::Lr(lr) => Some(lr),
-            ConnectivityView::Edgebreaker(_) => None,
+            _ => None,
+        }
+    }
+
+    /// The constrained strips and adjacent-strips table, answering the corner operators on
+    /// the buffer, when the container holds them.
+    pub fn strips(&self) -> Option<&CtsTables<LeWords<'a>>> {
+        match &self.connectivity {
+            ConnectivityView::Strips(strips) => Some(strips),
+            _ => None,
         }
     }
 
@@ -601,6 +647,11 @@ impl<'a> MeshView<'a> {
         self.triangles
     }
 
+    /// Number of container vertices: those of the connectivity, copies included.
+    pub fn connectivity_vertex_count(&self) -> u32 {
+        self.vertices
+    }
+
     /// Number of vertices once copies are merged back.
     pub fn output_vertex_count(&self) -> u32 {
         self.output_vertices
@@ -628,16 +679,10 @@ impl<'a> MeshView<'a> {
             let (copy, original) = (self.copies.at(2 * i), self.copies.at(2 * i + 1));
             output[copy as usize] = output[original as usize];
         }
-        let mut triangles: Vec<[u32; 3]> = match &self.connectivity {
-            ConnectivityView::Lr(lr) => lr
-                .triangles()
-                .map(|t| lr.triangle_vertices(t).map(|v| output[v.idx()]))
-                .collect(),
-            ConnectivityView::Edgebreaker(decoded) => decoded
-                .iter()
-                .map(|t| t.map(|v| output[v as usize]))
-                .collect(),
-        };
+        let mut triangles: Vec<[u32; 3]> =
+            Vec::with_capacity(self.triangles as usize + self.kept.count() / 3);
+        self.connectivity
+            .for_each_triangle(|t| triangles.push(t.map(|v| output[v as usize])));
         for i in 0..self.kept.count() / 3 {
             triangles.push([0, 1, 2].map(|k| output[self.kept.at(3 * i + k) as usize]));
         }
@@ -1048,7 +1093,7 @@ pub struct ContainerSummary {
     pub bytes: u64,
     /// The section table.
     pub sections: Vec<SectionSummary>,
-    /// Connectivity kind: `lr` or `edgebreaker`.
+    /// Connectivity kind: `lr`, `edgebreaker` or `strips`.
     pub connectivity: &'static str,
     /// Vertices once copies are merged back (the input's vertex count).
     pub vertices: u32,
@@ -1072,7 +1117,8 @@ pub struct ContainerSummary {
     pub connectivity_bytes: u64,
     /// Connectivity bits per triangle.
     pub connectivity_bpt: f64,
-    /// LR only: references per triangle of the LR tables (LR paper, section 8).
+    /// References per triangle: of the LR tables (LR paper, section 8), or of the strips'
+    /// `T`, `A` and `C`; none for Edgebreaker.
     pub rpt: Option<f64>,
     /// Positions stored as 16-bit integers (lossy).
     pub quantized: bool,
@@ -1094,6 +1140,7 @@ impl MeshView<'_> {
         };
         let connectivity_bytes = section_len(Tag::LRTB)
             + section_len(Tag::EBRK)
+            + section_len(Tag::STRP)
             + section_len(Tag::COPY)
             + section_len(Tag::KEPT);
         let triangles = self.triangles as u64 + (self.kept.count() / 3) as u64;
@@ -1105,14 +1152,21 @@ impl MeshView<'_> {
             }
         };
         let lr = self.lr();
-        let rpt = lr.map(|lr| {
-            let m_r = lr.ring_vertices();
-            let refs = 2 * m_r as u64
-                + 6 * lr.t0_count() as u64
-                + 3 * lr.record_count() as u64
-                + (lr.m - m_r) as u64;
-            per_triangle(refs as f64)
-        });
+        let rpt = match &self.connectivity {
+            ConnectivityView::Lr(lr) => {
+                let m_r = lr.ring_vertices();
+                let refs = 2 * m_r as u64
+                    + 6 * lr.t0_count() as u64
+                    + 3 * lr.record_count() as u64
+                    + (lr.m - m_r) as u64;
+                Some(per_triangle(refs as f64))
+            }
+            // T, A and C, one reference an entry.
+            ConnectivityView::Strips(strips) => Some(per_triangle(
+                (2 * strips.len() as u64 + strips.vertex_id_bound() as u64) as f64,
+            )),
+            ConnectivityView::Edgebreaker(_) => None,
+        };
         let mut attributes = Vec::new();
         for (present, name) in [
             (self.normals.is_some(), "normals"),
@@ -1141,7 +1195,7 @@ impl MeshView<'_> {
                     length: s.bytes.len() as u64,
                 })
                 .collect(),
-            connectivity: if lr.is_some() { "lr" } else { "edgebreaker" },
+            connectivity: self.connectivity.name(),
             vertices: self.output_vertices,
             connectivity_vertices: self.vertices,
             triangles,

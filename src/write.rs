@@ -14,6 +14,7 @@ use crate::format::{self, geometry, kind, Tag, ENTRY_LEN, FLAG_REQUIRED, HEADER_
 use crate::ids::{Triangle, Vertex};
 use crate::lr::{Lr, LrOptions};
 use crate::ops::CornerOps;
+use crate::strips::{Cts, StripOptions};
 use crate::Mesh;
 
 /// The `META` section: who wrote the file and from what, plus free key/values.
@@ -37,6 +38,9 @@ pub enum Connectivity {
     Lr,
     /// Edgebreaker (section `EBRK`): the smallest, decoded sequentially.
     Edgebreaker,
+    /// Constrained triangle strips with the adjacent-strips table (section `STRP`): a
+    /// rendering index list that also answers corner queries on the buffer.
+    Strips,
 }
 
 /// How to encode.
@@ -46,6 +50,8 @@ pub struct EncodeOptions {
     pub connectivity: Connectivity,
     /// Options of the LR construction.
     pub lr: LrOptions,
+    /// Options of the stripper, for [`Connectivity::Strips`] (fans are never used).
+    pub strips: StripOptions,
     /// Store the permutations back to the input's vertex and triangle order.
     pub keep_order: bool,
     /// Store positions as 16-bit integers in the bounding box (lossy) instead of f32.
@@ -59,6 +65,7 @@ impl Default for EncodeOptions {
         EncodeOptions {
             connectivity: Connectivity::Lr,
             lr: LrOptions::default(),
+            strips: StripOptions::default(),
             keep_order: false,
             quantize16: false,
             metadata: Metadata {
@@ -159,6 +166,22 @@ fn encode_edgebreaker(table: &CornerTable) -> Result<Encoded> {
     })
 }
 
+fn encode_strips(table: &CornerTable, options: &StripOptions) -> Result<Encoded> {
+    let cts = Cts::build(table, options)?;
+    let mut p = Payload::default();
+    p.u32s([cts.vertex_id_bound(), cts.t().len() as u32, 0, 0]);
+    p.u32s(cts.t().iter().copied());
+    p.u32s(cts.a().iter().copied());
+    p.u32s(cts.c().iter().copied());
+    Ok(Encoded {
+        kind: kind::STRIPS,
+        tag: Tag::STRP,
+        payload: p.0,
+        input_vertex: cts.vertices().map(|v| cts.input_vertex(v)).collect(),
+        input_triangle: cts.triangles().map(|t| cts.input_triangle(t)).collect(),
+    })
+}
+
 /// Encodes `mesh` with the connectivity `options` choose.
 ///
 /// # Errors
@@ -170,6 +193,7 @@ pub fn encode(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<u8>> {
     let encoded = match options.connectivity {
         Connectivity::Lr => encode_lr(&table, &options.lr)?,
         Connectivity::Edgebreaker => encode_edgebreaker(&table)?,
+        Connectivity::Strips => encode_strips(&table, &options.strips)?,
     };
     let m = encoded.input_vertex.len() as u32;
     let per_vertex = |v: u32| encoded.input_vertex[v as usize] as usize;

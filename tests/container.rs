@@ -8,6 +8,7 @@ use lrmesh::generate::{self, Rng};
 use lrmesh::io::{read_mesh, ReadOptions};
 use lrmesh::lr::Lr;
 use lrmesh::read::{open, Limits};
+use lrmesh::strips::Cts;
 use lrmesh::write::{encode, Connectivity, EncodeOptions};
 use lrmesh::{CornerOps, CornerTable, Error, Mesh};
 use proptest::prelude::*;
@@ -103,6 +104,7 @@ fn with_attributes(mut mesh: Mesh, seed: u64) -> Mesh {
 
 fn round_trip(mesh: &Mesh, keep_order: bool) -> Vec<u8> {
     round_trip_as(mesh, keep_order, Connectivity::Edgebreaker);
+    round_trip_as(mesh, keep_order, Connectivity::Strips);
     round_trip_as(mesh, keep_order, Connectivity::Lr)
 }
 
@@ -177,6 +179,129 @@ fn view_equals_owned_lr_and_corner_table() {
     }
 }
 
+/// The strips kind: the view on the buffer answers every operator exactly as the owned
+/// constrained strips do, and agrees with the corner table corner by corner.
+#[test]
+fn strips_view_equals_owned_cts_and_corner_table() {
+    let mut meshes = corpus();
+    let mut rng = Rng::new(11);
+    let mut defective = generate::torus(6, 7);
+    generate::append(&mut defective, &generate::torus(3, 4));
+    generate::punch_holes(&mut defective, 3, &mut rng);
+    generate::add_defects(&mut defective, 8, &mut rng);
+    meshes.push(("generated defective".into(), defective));
+    meshes.push(("soup".into(), generate::soup(12, 30, &mut rng)));
+    for (name, mesh) in meshes {
+        let options = EncodeOptions {
+            connectivity: Connectivity::Strips,
+            ..EncodeOptions::default()
+        };
+        let bytes = encode(&mesh, &options).unwrap();
+        let view = open(&bytes, &Limits::default()).unwrap();
+        assert!(view.lr().is_none());
+        let strips = view.strips().expect("a strips container");
+        let table = CornerTable::from_mesh(&mesh).unwrap();
+        let owned = Cts::build(&table, &options.strips).unwrap();
+        assert_eq!(
+            strips.triangle_id_bound(),
+            owned.triangle_id_bound(),
+            "{name}"
+        );
+        assert_eq!(strips.vertex_id_bound(), owned.vertex_id_bound(), "{name}");
+        assert_eq!(strips.triangle_count(), owned.triangle_count(), "{name}");
+        assert!(strips.triangles().eq(owned.triangles()), "{name}");
+        for c in owned.corners() {
+            assert_eq!(strips.vertex(c), owned.vertex(c), "{name} c.v {c:?}");
+            assert_eq!(strips.opposite(c), owned.opposite(c), "{name} c.o {c:?}");
+            assert_eq!(strips.swing(c), owned.swing(c), "{name} c.s {c:?}");
+        }
+        for v in owned.vertices() {
+            assert_eq!(strips.vertex_corner(v), owned.vertex_corner(v), "{name}");
+            assert_eq!(
+                view.position(v),
+                mesh.positions[owned.input_vertex(v) as usize]
+            );
+        }
+        let key = |c: lrmesh::Corner| {
+            (
+                owned.input_triangle(strips.triangle(c)),
+                owned.input_vertex(strips.vertex(c)),
+            )
+        };
+        check_against_table(strips, key, |v| view.position(v), &table, &mesh);
+        let summary = view.summary();
+        assert_eq!(summary.connectivity, "strips");
+        assert!(summary.rpt.is_some());
+    }
+}
+
+/// Forged `STRP` sections (checksums recomputed, so the rules themselves must catch them):
+/// every word of a small section set to other values gives an error naming `STRP`, or a
+/// container whose operators answer with valid ids; never a panic.
+#[test]
+fn forged_strips_sections_are_rejected_or_consistent() {
+    use lrmesh::format::Tag;
+    use lrmesh::write::assemble;
+    let mut mesh = generate::torus(3, 4);
+    generate::punch_holes(&mut mesh, 1, &mut Rng::new(3));
+    let options = EncodeOptions {
+        connectivity: Connectivity::Strips,
+        ..EncodeOptions::default()
+    };
+    let bytes = encode(&mesh, &options).unwrap();
+    let sections = sections_of(&bytes);
+    let index = sections.iter().position(|s| s.0 == Tag::STRP).unwrap();
+    let words = sections[index].2.len() / 4;
+    let (mut rejected, mut accepted) = (0, 0);
+    for w in 0..words {
+        let original = u32::from_le_bytes(sections[index].2[4 * w..4 * w + 4].try_into().unwrap());
+        for value in [
+            0,
+            1,
+            2,
+            5,
+            original.wrapping_add(1),
+            original.wrapping_sub(1),
+            original ^ 0x8000_0000,
+            u32::MAX,
+            u32::MAX - 1,
+        ] {
+            if value == original {
+                continue;
+            }
+            let mut forged = sections.clone();
+            forged[index].2[4 * w..4 * w + 4].copy_from_slice(&value.to_le_bytes());
+            let forged = assemble(&forged);
+            match open(&forged, &Limits::default()) {
+                Err(e) => {
+                    let message = e.to_string();
+                    assert!(
+                        message.contains("STRP") || message.contains("MESH"),
+                        "word {w} = {value}: {message}"
+                    );
+                    rejected += 1;
+                }
+                Ok(view) => {
+                    accepted += 1;
+                    let strips = view.strips().unwrap();
+                    for c in strips.corners() {
+                        assert!(strips.vertex(c).0 < strips.vertex_id_bound());
+                        if let Some(o) = strips.opposite(c) {
+                            assert_eq!(strips.opposite(o), Some(c));
+                        }
+                    }
+                    for v in strips.vertices() {
+                        lrmesh::ops::star(strips, v).count();
+                    }
+                    view.to_mesh().validate().unwrap();
+                }
+            }
+        }
+    }
+    assert!(rejected > 0);
+    eprintln!("{rejected} forged sections rejected, {accepted} accepted as consistent");
+}
+
 #[test]
 fn quantized_positions_are_close() {
     let mesh = read_mesh(&corpus_dir().join("fandisk.off"), &ReadOptions::default())
@@ -213,6 +338,8 @@ fn every_damaged_byte_is_rejected() {
         ("tetrahedron.off", Connectivity::Lr),
         ("hedra_open.off", Connectivity::Lr),
         ("hedra_open.off", Connectivity::Edgebreaker),
+        ("tetrahedron.off", Connectivity::Strips),
+        ("hedra_open.off", Connectivity::Strips),
     ] {
         let mesh = read_mesh(&corpus_dir().join(name), &ReadOptions::default())
             .unwrap()
@@ -394,7 +521,11 @@ fn hostile_counts_fail_fast() {
     let mesh = generate::torus(3, 4);
     let bytes = encode(&mesh, &EncodeOptions::default()).unwrap();
     let sections = sections_of(&bytes);
+    let mut hostile = Vec::new();
     for (tag, at, value) in [
+        (Tag::STRP, 0, 3_000_000_000),  // vertices
+        (Tag::STRP, 4, 1_000_000_000),  // strip entries
+        (Tag::STRP, 4, 3_000_000_000),  // strip entries
         (Tag::MESH, 0, u32::MAX - 2),   // vertices
         (Tag::MESH, 8, u32::MAX - 2),   // triangles
         (Tag::MESH, 12, u32::MAX - 2),  // kept triangles
@@ -403,7 +534,23 @@ fn hostile_counts_fail_fast() {
         (Tag::LRTB, 12, 3_000_000_000), // T0 triangles
         (Tag::LRTB, 16, 1_000_000_000), // VO* records
     ] {
-        let mut forged = sections.clone();
+        hostile.push((tag, at, value));
+    }
+    let strips = encode(
+        &mesh,
+        &EncodeOptions {
+            connectivity: Connectivity::Strips,
+            ..EncodeOptions::default()
+        },
+    )
+    .unwrap();
+    let strips_sections = sections_of(&strips);
+    for (tag, at, value) in hostile {
+        let mut forged = if tag == Tag::STRP {
+            strips_sections.clone()
+        } else {
+            sections.clone()
+        };
         let section = forged.iter_mut().find(|s| s.0 == tag).unwrap();
         section.2[at..at + 4].copy_from_slice(&value.to_le_bytes());
         let bytes = assemble(&forged);

@@ -148,6 +148,46 @@ fn check_cts(mesh: &Mesh, options: &StripOptions) -> Cts {
     cts
 }
 
+/// The constrained strips stored in a container (`--connectivity strips`) and read in place
+/// answer every operator as the owned ones do, and decode to the input's triangles.
+fn check_cts_container(mesh: &Mesh) {
+    use lrmesh::read::{open, Limits};
+    use lrmesh::write::{encode, Connectivity, EncodeOptions};
+    let options = EncodeOptions {
+        connectivity: Connectivity::Strips,
+        keep_order: true,
+        ..EncodeOptions::default()
+    };
+    let bytes = encode(mesh, &options).unwrap();
+    let view = open(&bytes, &Limits::default()).unwrap();
+    let stored = view.strips().expect("a strips container");
+    let owned = Cts::build(&CornerTable::from_mesh(mesh).unwrap(), &options.strips).unwrap();
+    assert!(stored.triangles().eq(owned.triangles()));
+    assert_eq!(stored.vertex_id_bound(), owned.vertex_id_bound());
+    for c in owned.corners() {
+        assert_eq!(stored.vertex(c), owned.vertex(c), "c.v of {c:?}");
+        assert_eq!(stored.opposite(c), owned.opposite(c), "c.o of {c:?}");
+    }
+    for v in owned.vertices() {
+        assert_eq!(
+            stored.vertex_corner(v),
+            owned.vertex_corner(v),
+            "v.c of {v:?}"
+        );
+    }
+    let back = view.to_mesh();
+    assert_eq!(back.positions, mesh.positions);
+    assert_eq!(back.triangles.len(), mesh.triangles.len());
+    for (got, want) in back.triangles.iter().zip(&mesh.triangles) {
+        let rotations = [
+            *want,
+            [want[1], want[2], want[0]],
+            [want[2], want[0], want[1]],
+        ];
+        assert!(rotations.contains(got), "{got:?} vs {want:?}");
+    }
+}
+
 #[test]
 fn corpus_cts() {
     for (name, mesh) in corpus() {
@@ -205,6 +245,7 @@ fn small_cases() {
         }
         check_lr_index(&mesh);
         check_cts(&mesh, &StripOptions::default());
+        check_cts_container(&mesh);
     }
     // Out-of-range indices are emitted as they are, not a panic.
     let s = stripify(2, &[[0, 1, 5], [0, 1, 2]], &StripOptions::default());
@@ -272,5 +313,6 @@ proptest! {
         }
         check_lr_index(&mesh);
         check_cts(&mesh, &StripOptions { samples: 2, ..StripOptions::default() });
+        check_cts_container(&mesh);
     }
 }

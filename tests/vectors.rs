@@ -38,8 +38,9 @@ fn options(connectivity: Connectivity) -> EncodeOptions {
     }
 }
 
-/// For LR, one line per corner of every canonical triangle: `corner vertex opposite` (`-` for
-/// none). For Edgebreaker, one line per decoded triangle: its three vertices, in decode order.
+/// For LR and strips, one line per corner of every (canonical) triangle:
+/// `corner vertex opposite` (`-` for none). For Edgebreaker, one line per decoded triangle: its
+/// three vertices, in decode order.
 fn listing(name: &str, bytes: &[u8]) -> String {
     let view = open(bytes, &Limits::default()).unwrap();
     let mut out = String::new();
@@ -62,6 +63,28 @@ fn listing(name: &str, bytes: &[u8]) -> String {
             for c in lr.corners() {
                 let o = lr.opposite(c).map_or("-".to_string(), |o| o.0.to_string());
                 writeln!(out, "{} {} {o}", c.0, lr.vertex(c).0).unwrap();
+            }
+        }
+        ConnectivityView::Strips(strips) => {
+            writeln!(
+                out,
+                "# lrmesh test vector {name}: the vertex and opposite of every corner"
+            )
+            .unwrap();
+            writeln!(
+                out,
+                "# {} vertices, {} triangles, {} strip entries",
+                strips.vertex_id_bound(),
+                view.triangle_count(),
+                strips.len()
+            )
+            .unwrap();
+            writeln!(out, "# corner vertex opposite").unwrap();
+            for c in strips.corners() {
+                let o = strips
+                    .opposite(c)
+                    .map_or("-".to_string(), |o| o.0.to_string());
+                writeln!(out, "{} {} {o}", c.0, strips.vertex(c).0).unwrap();
             }
         }
         ConnectivityView::Edgebreaker(triangles) => {
@@ -87,6 +110,7 @@ fn vectors_match() {
         for (connectivity, suffix) in [
             (Connectivity::Lr, ""),
             (Connectivity::Edgebreaker, ".edgebreaker"),
+            (Connectivity::Strips, ".strips"),
         ] {
             let source = dir().join(format!("{name}.off"));
             let mesh = read_mesh(&source, &ReadOptions::default()).unwrap().mesh;

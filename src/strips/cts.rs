@@ -21,6 +21,10 @@
 //! * `C`: one corner per vertex. *Addition:* the paper has no vertex-to-triangle map; the
 //!   operator `v.c` needs one. It is not counted in [`Cts::bits_per_triangle`].
 //!
+//! The tables and the operators on them are [`CtsTables`], generic over their storage
+//! ([`Words`]): owned vectors in a [`Cts`], or the little-endian bytes of a container's `STRP`
+//! section read in place (`spec/FORMAT.md`), with one implementation of the operators.
+//!
 //! # Ids
 //!
 //! Triangle `j` is the triangle at position `j` of `T` (ids have gaps: delimiters and swaps);
@@ -41,6 +45,7 @@ use super::{stripify_adjacency, StripOptions, RESTART};
 use crate::corner_table::{CornerTable, NONE};
 use crate::error::{Error, Result};
 use crate::ids::{Corner, Triangle, Vertex};
+use crate::lr::Words;
 use crate::ops::CornerOps;
 
 /// Separates strips in `T`; marks "no neighbour" in `A`.
@@ -50,17 +55,29 @@ pub const DELIMITER: u32 = u32::MAX;
 /// `T` (the permutation is its own inverse).
 const OFFSET: [[usize; 3]; 2] = [[0, 1, 2], [1, 0, 2]];
 
-/// Constrained triangle strips with the adjacent-strips table (see the module documentation).
+/// `T`, `A` and `C` and the corner operators on them, for any storage of the words (see the
+/// module documentation). Built by [`Cts::build`], or read in place from a container.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CtsTables<W> {
+    /// The strips, separated by [`DELIMITER`]s.
+    pub(crate) t: W,
+    /// The adjacent-strips table, as long as `t`.
+    pub(crate) a: W,
+    /// A corner of each vertex (`NONE` for a vertex without triangles).
+    pub(crate) c: W,
+    /// Number of triangles in `t`.
+    pub(crate) triangles: u32,
+}
+
+/// Constrained triangle strips with the adjacent-strips table (see the module documentation),
+/// owned, with the way back to the input's triangles and vertices.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Cts {
-    t: Vec<u32>,
-    a: Vec<u32>,
-    c: Vec<u32>,
+    tables: CtsTables<Vec<u32>>,
     /// Position -> input triangle (`NONE` where no triangle starts).
     input_triangle: Vec<u32>,
     /// Vertex -> input vertex.
     input_vertex: Vec<u32>,
-    triangles: u32,
 }
 
 impl Cts {
@@ -115,9 +132,37 @@ impl Cts {
                 position[tt as usize] = j as u32;
             }
         }
-        let mut cts = Cts {
+        let mut tables = CtsTables {
             a: vec![DELIMITER; t.len()],
             c: vec![NONE; table.vertex_id_bound() as usize],
+            triangles: n as u32,
+            t,
+        };
+        let v_table = table.v_table();
+        for (j, &tt) in at.iter().enumerate() {
+            if tt == NONE {
+                continue;
+            }
+            for (i, &q) in OFFSET[j % 2].iter().enumerate() {
+                let vertex = tables.t[j + q];
+                if tables.c[vertex as usize] == NONE {
+                    tables.c[vertex as usize] = (3 * j + i) as u32;
+                }
+                let Some(slot) = tables.a_slot(j, q) else {
+                    continue;
+                };
+                // The table corner of tt at this vertex, and the triangle across from it.
+                let tc = (0..3)
+                    .map(|k| 3 * tt as usize + k)
+                    .find(|&k| v_table[k] == vertex);
+                let across = tc
+                    .map(|k| table.o_table()[k])
+                    .filter(|&o| o != NONE)
+                    .map_or(DELIMITER, |o| position[(o / 3) as usize]);
+                tables.a[slot] = across;
+            }
+        }
+        Ok(Cts {
             input_triangle: at
                 .iter()
                 .map(|&tt| {
@@ -132,57 +177,38 @@ impl Cts {
                 .vertices()
                 .map(|v| table.original_vertex(v).0)
                 .collect(),
-            triangles: n as u32,
-            t,
-        };
-        let v_table = table.v_table();
-        for (j, &tt) in at.iter().enumerate() {
-            if tt == NONE {
-                continue;
-            }
-            for (i, &q) in OFFSET[j % 2].iter().enumerate() {
-                let vertex = cts.t[j + q];
-                if cts.c[vertex as usize] == NONE {
-                    cts.c[vertex as usize] = (3 * j + i) as u32;
-                }
-                let slot = match q {
-                    1 => j + 1,
-                    2 if cts.back(j) == NONE => j,
-                    0 if cts.forward(j) == NONE => j + 2,
-                    _ => continue,
-                };
-                // The table corner of tt at this vertex, and the triangle across from it.
-                let tc = (0..3)
-                    .map(|k| 3 * tt as usize + k)
-                    .find(|&k| v_table[k] == vertex);
-                let across = tc
-                    .map(|k| table.o_table()[k])
-                    .filter(|&o| o != NONE)
-                    .map_or(DELIMITER, |o| position[(o / 3) as usize]);
-                cts.a[slot] = across;
-            }
-        }
-        Ok(cts)
+            tables,
+        })
     }
 
     /// The index table `T`, strips separated by [`DELIMITER`]s.
     pub fn t(&self) -> &[u32] {
-        &self.t
+        &self.tables.t
     }
 
     /// The adjacent-strips table `A` (positions in `T`, [`DELIMITER`] for none).
     pub fn a(&self) -> &[u32] {
-        &self.a
+        &self.tables.a
+    }
+
+    /// The vertex-to-corner table `C` (`u32::MAX` for a vertex without triangles).
+    pub fn c(&self) -> &[u32] {
+        &self.tables.c
+    }
+
+    /// The tables the operators run on.
+    pub fn tables(&self) -> &CtsTables<Vec<u32>> {
+        &self.tables
     }
 
     /// Storage of `T` and `A` at 32 bits an entry, per triangle (the paper's integer arrays).
     pub fn bits_per_triangle(&self) -> f64 {
-        32.0 * (self.t.len() + self.a.len()) as f64 / self.triangles.max(1) as f64
+        self.tables.bits_per_triangle()
     }
 
     /// Number of triangles.
     pub fn triangle_count(&self) -> u32 {
-        self.triangles
+        self.tables.triangles
     }
 
     /// The input triangle of triangle `t` (`u32::MAX` when no triangle starts at `t`).
@@ -194,31 +220,71 @@ impl Cts {
     pub fn input_vertex(&self, v: Vertex) -> u32 {
         self.input_vertex.get(v.idx()).copied().unwrap_or(NONE)
     }
+}
+
+impl<W: Words> CtsTables<W> {
+    /// Storage of `T` and `A` at 32 bits an entry, per triangle (the paper's integer arrays).
+    pub fn bits_per_triangle(&self) -> f64 {
+        32.0 * (self.t.count() + self.a.count()) as f64 / self.triangles.max(1) as f64
+    }
+
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> u32 {
+        self.triangles
+    }
+
+    /// Entries of `T` (and of `A`).
+    pub fn len(&self) -> usize {
+        self.t.count()
+    }
+
+    /// Whether `T` is empty (no triangles).
+    pub fn is_empty(&self) -> bool {
+        self.t.count() == 0
+    }
+
+    /// Entry `j` of `T`, `None` past its end.
+    pub fn t_at(&self, j: usize) -> Option<u32> {
+        (j < self.t.count()).then(|| self.t.at(j))
+    }
+
+    /// Entry `j` of `A`, `None` past its end.
+    pub fn a_at(&self, j: usize) -> Option<u32> {
+        (j < self.a.count()).then(|| self.a.at(j))
+    }
 
     /// The three entries at `j` if they are all vertices.
     #[inline(always)]
     fn triple(&self, j: usize) -> Option<[u32; 3]> {
-        let w = self.t.get(j..j + 3)?;
-        (w[0] != DELIMITER && w[1] != DELIMITER && w[2] != DELIMITER).then(|| [w[0], w[1], w[2]])
+        if j + 3 > self.t.count() {
+            return None;
+        }
+        let w = [self.t.at(j), self.t.at(j + 1), self.t.at(j + 2)];
+        (w[0] != DELIMITER && w[1] != DELIMITER && w[2] != DELIMITER).then_some(w)
     }
 
     /// Whether a triangle starts at position `j`.
     #[inline(always)]
-    fn is_triangle(&self, j: usize) -> bool {
+    pub fn is_triangle(&self, j: usize) -> bool {
         self.triple(j)
             .is_some_and(|w| w[0] != w[1] && w[1] != w[2] && w[0] != w[2])
     }
 
     /// Whether a swap (zero-area triangle) starts at position `j`.
     #[inline(always)]
-    fn is_swap(&self, j: usize) -> bool {
+    pub fn is_swap(&self, j: usize) -> bool {
         self.triple(j)
             .is_some_and(|w| w[0] == w[1] || w[1] == w[2] || w[0] == w[2])
     }
 
+    /// Whether `c` is a corner of a triangle.
+    pub fn is_corner(&self, c: Corner) -> bool {
+        self.is_triangle((c.0 / 3) as usize)
+    }
+
     /// The strip neighbour across `{T[j], T[j+1]}`, `NONE` at a strip's start.
     #[inline(always)]
-    fn back(&self, j: usize) -> u32 {
+    pub(crate) fn back(&self, j: usize) -> u32 {
         if j >= 1 && self.is_triangle(j - 1) {
             (j - 1) as u32
         } else if j >= 2 && self.is_swap(j - 1) && self.is_triangle(j - 2) {
@@ -230,7 +296,7 @@ impl Cts {
 
     /// The strip neighbour across `{T[j+1], T[j+2]}`, `NONE` at a strip's end.
     #[inline(always)]
-    fn forward(&self, j: usize) -> u32 {
+    pub(crate) fn forward(&self, j: usize) -> u32 {
         if self.is_triangle(j + 1) {
             (j + 1) as u32
         } else if self.is_swap(j + 1) && self.is_triangle(j + 2) {
@@ -239,31 +305,95 @@ impl Cts {
             NONE
         }
     }
+
+    /// The position of `A` that the opposite of the corner at offset `q` of triangle `j`
+    /// reads, or `None` when the strip itself gives the neighbour.
+    #[inline(always)]
+    pub(crate) fn a_slot(&self, j: usize, q: usize) -> Option<usize> {
+        match q {
+            1 => Some(j + 1),
+            2 => (self.back(j) == NONE).then_some(j),
+            _ => (self.forward(j) == NONE).then_some(j + 2),
+        }
+    }
 }
 
 impl CornerOps for Cts {
     fn vertex_id_bound(&self) -> u32 {
-        self.c.len() as u32
+        self.tables.vertex_id_bound()
     }
 
     fn triangle_id_bound(&self) -> u32 {
-        self.t.len() as u32
+        self.tables.triangle_id_bound()
     }
 
     fn triangles(&self) -> impl Iterator<Item = Triangle> + '_ {
-        (0..self.t.len())
+        self.tables.triangles()
+    }
+
+    fn vertices(&self) -> impl Iterator<Item = Vertex> + '_ {
+        self.tables.vertices()
+    }
+
+    #[inline]
+    fn vertex(&self, c: Corner) -> Vertex {
+        self.tables.vertex(c)
+    }
+
+    #[inline]
+    fn triangle(&self, c: Corner) -> Triangle {
+        self.tables.triangle(c)
+    }
+
+    #[inline]
+    fn next(&self, c: Corner) -> Corner {
+        self.tables.next(c)
+    }
+
+    #[inline]
+    fn prev(&self, c: Corner) -> Corner {
+        self.tables.prev(c)
+    }
+
+    #[inline]
+    fn opposite(&self, c: Corner) -> Option<Corner> {
+        self.tables.opposite(c)
+    }
+
+    #[inline]
+    fn vertex_corner(&self, v: Vertex) -> Option<Corner> {
+        self.tables.vertex_corner(v)
+    }
+
+    #[inline]
+    fn triangle_corner(&self, t: Triangle) -> Corner {
+        self.tables.triangle_corner(t)
+    }
+}
+
+impl<W: Words> CornerOps for CtsTables<W> {
+    fn vertex_id_bound(&self) -> u32 {
+        self.c.count() as u32
+    }
+
+    fn triangle_id_bound(&self) -> u32 {
+        self.t.count() as u32
+    }
+
+    fn triangles(&self) -> impl Iterator<Item = Triangle> + '_ {
+        (0..self.t.count())
             .filter(|&j| self.is_triangle(j))
             .map(|j| Triangle(j as u32))
     }
 
     fn vertices(&self) -> impl Iterator<Item = Vertex> + '_ {
-        (0..self.c.len() as u32).map(Vertex)
+        (0..self.c.count() as u32).map(Vertex)
     }
 
     #[inline]
     fn vertex(&self, c: Corner) -> Vertex {
         let j = (c.0 / 3) as usize;
-        Vertex(self.t[j + OFFSET[j % 2][(c.0 % 3) as usize]])
+        Vertex(self.t.at(j + OFFSET[j % 2][(c.0 % 3) as usize]))
     }
 
     #[inline]
@@ -285,13 +415,13 @@ impl CornerOps for Cts {
         let j = (c.0 / 3) as usize;
         let q = OFFSET[j % 2][(c.0 % 3) as usize];
         let nb = match q {
-            1 => self.a[j + 1],
+            1 => self.a.at(j + 1),
             2 => match self.back(j) {
-                NONE => self.a[j],
+                NONE => self.a.at(j),
                 b => b,
             },
             _ => match self.forward(j) {
-                NONE => self.a[j + 2],
+                NONE => self.a.at(j + 2),
                 f => f,
             },
         };
@@ -300,13 +430,13 @@ impl CornerOps for Cts {
         }
         // The neighbour's corner off the shared edge (the two entries other than q).
         let (x, y) = match q {
-            0 => (self.t[j + 1], self.t[j + 2]),
-            1 => (self.t[j], self.t[j + 2]),
-            _ => (self.t[j], self.t[j + 1]),
+            0 => (self.t.at(j + 1), self.t.at(j + 2)),
+            1 => (self.t.at(j), self.t.at(j + 2)),
+            _ => (self.t.at(j), self.t.at(j + 1)),
         };
         let k = nb as usize;
         let off = (0..3).find(|&r| {
-            let w = self.t[k + r];
+            let w = self.t.at(k + r);
             w != x && w != y
         })?;
         Some(Corner(3 * nb + OFFSET[k % 2][off] as u32))
@@ -314,7 +444,7 @@ impl CornerOps for Cts {
 
     #[inline]
     fn vertex_corner(&self, v: Vertex) -> Option<Corner> {
-        Corner::from_stored(self.c[v.idx()])
+        Corner::from_stored(self.c.at(v.idx()))
     }
 
     #[inline]

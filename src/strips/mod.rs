@@ -22,7 +22,7 @@ mod stats;
 mod stripper;
 
 pub use adjacency::{Adjacency, Node};
-pub use cts::{Cts, DELIMITER};
+pub use cts::{Cts, CtsTables, DELIMITER};
 pub use lr_index::{lr_index_list, LrIndexList, INDEX_WART};
 pub use stats::StripStats;
 

@@ -1,0 +1,250 @@
+//! The `STRP` section (connectivity kind 3): constrained triangle strips with the
+//! adjacent-strips table, validated once by rules V28–V32 of `spec/FORMAT.md` and then read
+//! in place as [`CtsTables`] over the buffer's little-endian words.
+
+use super::{le_u32, Container, Fields};
+use crate::corner_table::NONE;
+use crate::error::{Error, Result};
+use crate::format::{Tag, STRP_HEADER_LEN};
+use crate::ids::{Corner, Vertex};
+use crate::lr::{LeWords, Words};
+use crate::ops::CornerOps;
+use crate::strips::{CtsTables, DELIMITER};
+
+/// The arrays of the section, for error offsets.
+#[derive(Clone, Copy)]
+enum Array {
+    T,
+    A,
+    C,
+}
+
+/// The `STRP` section as tables, after checking every rule the operators rely on.
+pub(super) fn strips_tables<'a>(
+    container: &Container<'a>,
+    m: u32,
+) -> Result<CtsTables<LeWords<'a>>> {
+    let section = *container.required(Tag::STRP)?;
+    let f = Fields { section };
+    let b = section.bytes;
+    if b.len() < STRP_HEADER_LEN {
+        return Err(f.err(
+            0,
+            format!(
+                "{} bytes, shorter than its {STRP_HEADER_LEN}-byte header",
+                b.len()
+            ),
+        ));
+    }
+    let [v, len, r0, r1] = [0, 1, 2, 3].map(|i| le_u32(b, 4 * i));
+    // [V28] counts and length.
+    if v != m {
+        return Err(f.err(0, format!("{v} vertices, section MESH says {m}")));
+    }
+    if m == DELIMITER {
+        return Err(f.err(0, "vertex ids must stay below the delimiter 0xFFFFFFFF"));
+    }
+    if [r0, r1] != [0; 2] {
+        return Err(f.err(8, "reserved fields are not zero"));
+    }
+    if len % 2 != 0 || 3 * len as u64 >= NONE as u64 {
+        return Err(f.err(
+            4,
+            format!("{len} strip entries: the count must be even and 3 times it below 2^32 - 1"),
+        ));
+    }
+    f.expect_len(Some(
+        STRP_HEADER_LEN as u64 + 4 * (2 * len as u64 + m as u64),
+    ))?;
+    let len = len as usize;
+    let (t_at, a_at, c_at) = (
+        STRP_HEADER_LEN,
+        STRP_HEADER_LEN + 4 * len,
+        STRP_HEADER_LEN + 8 * len,
+    );
+    let t = LeWords(&b[t_at..a_at]);
+    let a = LeWords(&b[a_at..c_at]);
+    let c = LeWords(&b[c_at..]);
+    let err = |array: Array, i: usize, message: String| -> Error {
+        let (base, name) = match array {
+            Array::T => (t_at, "T"),
+            Array::A => (a_at, "A"),
+            Array::C => (c_at, "C"),
+        };
+        f.err(base + 4 * i, format!("{name}[{i}]: {message}"))
+    };
+
+    // [V29] Layout: strips of at least three vertex ids, each from an even position and padded
+    // with one delimiter (odd length) or two (even length).
+    let mut j = 0;
+    let mut runs = Vec::new();
+    while j < len {
+        if t.at(j) == DELIMITER {
+            return Err(err(
+                Array::T,
+                j,
+                "a strip must start here, found a delimiter".into(),
+            ));
+        }
+        let start = j;
+        while j < len && t.at(j) != DELIMITER {
+            if t.at(j) >= m {
+                return Err(err(
+                    Array::T,
+                    j,
+                    format!("vertex {} out of range ({m} vertices)", t.at(j)),
+                ));
+            }
+            j += 1;
+        }
+        let run = j - start;
+        if run < 3 {
+            return Err(err(
+                Array::T,
+                start,
+                format!("a strip of {run} entries, fewer than 3"),
+            ));
+        }
+        let pad = if run % 2 == 1 { 1 } else { 2 };
+        for _ in 0..pad {
+            if j >= len {
+                return Err(f.err(
+                    a_at,
+                    format!("T ends inside the padding of the strip at {start}"),
+                ));
+            }
+            if t.at(j) != DELIMITER {
+                return Err(err(
+                    Array::T,
+                    j,
+                    format!("a strip of {run} entries must be followed by {pad} delimiters"),
+                ));
+            }
+            j += 1;
+        }
+        runs.push((start, run));
+    }
+
+    let mut tables = CtsTables {
+        t,
+        a,
+        c,
+        triangles: 0,
+    };
+    // Strips start and end with a triangle and never hold two swaps in a row.
+    let mut triangles = 0u32;
+    for &(start, run) in &runs {
+        let windows = start..start + run - 2;
+        if !tables.is_triangle(start) || !tables.is_triangle(start + run - 3) {
+            return Err(err(
+                Array::T,
+                start,
+                "a strip must start and end with a triangle, not a swap".into(),
+            ));
+        }
+        for w in windows {
+            if tables.is_triangle(w) {
+                triangles += 1;
+            } else if tables.is_swap(w + 1) {
+                return Err(err(Array::T, w, "two swaps in a row".into()));
+            }
+        }
+    }
+    tables.triangles = triangles;
+
+    // [V30] A: entries the operators read are the delimiter or a triangle's position; the
+    // others are the delimiter.
+    for j in 0..len {
+        let x = a.at(j);
+        let read = (j >= 1 && tables.is_triangle(j - 1))
+            || (tables.is_triangle(j) && tables.back(j) == NONE)
+            || (j >= 2 && tables.is_triangle(j - 2) && tables.forward(j - 2) == NONE);
+        if x == DELIMITER {
+            continue;
+        }
+        if !read {
+            return Err(err(
+                Array::A,
+                j,
+                format!("{x} where no operator reads: must be the delimiter"),
+            ));
+        }
+        if x as usize >= len || !tables.is_triangle(x as usize) {
+            return Err(err(
+                Array::A,
+                j,
+                format!("{x} is not the position of a triangle"),
+            ));
+        }
+    }
+
+    // [V31] c.o is an involution across one edge, reversed: each pair is checked from its
+    // smaller corner, and the pairs account for every corner that has an opposite.
+    let (mut with_opposite, mut pairs) = (0u64, 0u64);
+    for tri in tables.triangles() {
+        for corner in tables.triangle_corners(tri) {
+            let Some(o) = tables.opposite(corner) else {
+                continue;
+            };
+            with_opposite += 1;
+            if o.0 < corner.0 {
+                continue;
+            }
+            if !tables.is_corner(o)
+                || tables.opposite(o) != Some(corner)
+                || tables.vertex(tables.next(o)) != tables.vertex(tables.prev(corner))
+                || tables.vertex(tables.prev(o)) != tables.vertex(tables.next(corner))
+            {
+                return Err(err(
+                    Array::T,
+                    tri.idx(),
+                    format!(
+                        "corner {} and its opposite {} do not face each other across one edge",
+                        corner.0, o.0
+                    ),
+                ));
+            }
+            pairs += 1;
+        }
+    }
+    if with_opposite != 2 * pairs {
+        return Err(f.err(
+            a_at,
+            format!(
+                "{} corners have an opposite that does not point back",
+                with_opposite - 2 * pairs
+            ),
+        ));
+    }
+
+    // [V32] C: a corner of its vertex, NONE exactly for a vertex no triangle uses.
+    let mut used = vec![false; m as usize];
+    for tri in tables.triangles() {
+        for x in tables.triangle_vertices(tri) {
+            used[x.idx()] = true;
+        }
+    }
+    for (i, &is_used) in used.iter().enumerate() {
+        let x = c.at(i);
+        let ok = if x == NONE {
+            !is_used
+        } else {
+            tables.is_corner(Corner(x)) && tables.vertex(Corner(x)) == Vertex(i as u32)
+        };
+        if !ok {
+            return Err(err(
+                Array::C,
+                i,
+                format!(
+                    "{x:#x} is not a corner of vertex {i}{}",
+                    if is_used {
+                        ""
+                    } else {
+                        ", which no triangle uses"
+                    }
+                ),
+            ));
+        }
+    }
+    Ok(tables)
+}
