@@ -9,6 +9,7 @@
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
+pub mod bench;
 pub mod corner_table;
 pub mod edgebreaker;
 pub mod error;
@@ -20,6 +21,7 @@ pub mod lr;
 pub mod mesh;
 pub mod ops;
 pub mod read;
+pub mod render;
 pub mod strips;
 pub mod topology;
 pub mod write;

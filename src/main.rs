@@ -12,6 +12,8 @@ use lrmesh::strips::StripStats;
 use lrmesh::write::{self, EncodeOptions};
 use lrmesh::{CornerTable, Error, TopologyReport};
 
+mod progress;
+
 /// Prints a line to stdout; a closed pipe (`lrmesh info x | head`) is not an error.
 macro_rules! say {
     ($($arg:tt)*) => {{
@@ -117,6 +119,105 @@ enum Command {
         #[arg(long)]
         weld: bool,
     },
+    /// Draw the mesh as a PNG: coloured by ring order (blue to red, LR paper Table 1) or by
+    /// triangle class (T0, T2 and warts highlighted, LR paper Fig. 1).
+    Render {
+        /// The mesh file (.obj, .off, .ply, .stl) or an LR container (.lrm).
+        mesh: PathBuf,
+        /// The PNG to write.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// `ring`: ring order, blue to red; `classes`: T0 green, T0^w red, T2 blue, T2^w
+        /// violet, T1 cream.
+        #[arg(long, value_enum, default_value_t = RenderMode::Ring)]
+        mode: RenderMode,
+        /// Image size in pixels, WIDTHxHEIGHT.
+        #[arg(long, default_value = "800x600", value_parser = parse_size)]
+        size: (u32, u32),
+        /// Viewpoint, AZIMUTH,ELEVATION in degrees around the up axis.
+        #[arg(long, default_value = "30,20", value_parser = parse_view, allow_hyphen_values = true)]
+        view: (f32, f32),
+        /// The axis that points up in the picture.
+        #[arg(long, value_enum, default_value_t = UpAxis::Y)]
+        up: UpAxis,
+        /// Perspective projection instead of orthographic.
+        #[arg(long)]
+        perspective: bool,
+        /// Draw the ring edges as black lines.
+        #[arg(long)]
+        ring_lines: bool,
+        /// Supersamples per pixel along each axis (anti-aliasing).
+        #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=4))]
+        samples: u32,
+        /// RING-EXPANDER runs per component (mesh input only).
+        #[arg(long, default_value_t = LrOptions::default().tries)]
+        tries: u32,
+        /// Seed for the choice of seed corners (mesh input only).
+        #[arg(long, default_value_t = LrOptions::default().seed)]
+        seed: u64,
+        /// STL input only: merge corners with identical positions into shared vertices.
+        #[arg(long)]
+        weld: bool,
+    },
+    /// Compare the connectivity representations on one mesh in one run: sizes, build and
+    /// open times, and the LR paper's Fig. 10 loops as ratios to the corner table.
+    Bench {
+        /// The mesh file (.obj, .off, .ply, .stl).
+        mesh: PathBuf,
+        /// Print one JSON object instead of the table.
+        #[arg(long)]
+        json: bool,
+        /// Timed runs of each step; the median is reported.
+        #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
+        runs: u32,
+        /// STL only: merge corners with identical positions into shared vertices.
+        #[arg(long)]
+        weld: bool,
+    },
+}
+
+/// Colourings of `lrmesh render`.
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum RenderMode {
+    /// Ring order, blue to red.
+    Ring,
+    /// Triangle classes.
+    Classes,
+}
+
+/// Up axes of `lrmesh render`.
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum UpAxis {
+    /// x up.
+    X,
+    /// y up.
+    Y,
+    /// z up.
+    Z,
+}
+
+/// `WIDTHxHEIGHT`, each from 1 to 16384.
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("`{s}` is not WIDTHxHEIGHT"))?;
+    let side = |t: &str| match t.trim().parse::<u32>() {
+        Ok(n) if (1..=16384).contains(&n) => Ok(n),
+        _ => Err(format!("`{t}` is not a size from 1 to 16384")),
+    };
+    Ok((side(w)?, side(h)?))
+}
+
+/// `AZIMUTH,ELEVATION` in degrees.
+fn parse_view(s: &str) -> Result<(f32, f32), String> {
+    let (a, e) = s
+        .split_once(',')
+        .ok_or_else(|| format!("`{s}` is not AZIMUTH,ELEVATION"))?;
+    let angle = |t: &str| match t.trim().parse::<f32>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        _ => Err(format!("`{t}` is not an angle in degrees")),
+    };
+    Ok((angle(a)?, angle(e)?))
 }
 
 /// Connectivity representations of a container.
@@ -149,7 +250,9 @@ fn is_container(path: &Path) -> bool {
 }
 
 fn load(path: &std::path::Path, weld: bool) -> lrmesh::Result<lrmesh::Mesh> {
-    let loaded = io::read_mesh(path, &ReadOptions { weld })?;
+    let loaded = progress::step(&format!("reading {}", path.display()), || {
+        io::read_mesh(path, &ReadOptions { weld })
+    })?;
     for warning in &loaded.warnings {
         eprintln!("warning: {}: {warning}", path.display());
     }
@@ -191,8 +294,12 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
         } => {
             let mesh = load(&mesh, weld)?;
             let report = TopologyReport::of(&mesh);
-            let table = CornerTable::from_mesh(&mesh)?;
-            let lr = Lr::build(&table, &LrOptions { tries, seed })?;
+            let table = progress::step("building the corner table", || {
+                CornerTable::from_mesh(&mesh)
+            })?;
+            let lr = progress::step("building the LR", || {
+                Lr::build(&table, &LrOptions { tries, seed })
+            })?;
             let stats = LrStats::new(&lr, report.valence6_pct);
             let edgebreaker = EdgebreakerStats::of(&table)?;
             let strips = StripStats::of(&mesh)?;
@@ -234,7 +341,7 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
                 ..EncodeOptions::default()
             };
             options.metadata.source = input.file_name().map(|n| n.to_string_lossy().into_owned());
-            let bytes = write::encode(&mesh, &options)?;
+            let bytes = progress::step("encoding", || write::encode(&mesh, &options))?;
             std::fs::write(&output, &bytes).map_err(|source| Error::Io {
                 path: output.clone(),
                 source,
@@ -303,6 +410,112 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
                 summary.vertices,
                 summary.triangles
             );
+        }
+        Command::Render {
+            mesh,
+            output,
+            mode,
+            size,
+            view,
+            up,
+            perspective,
+            ring_lines,
+            samples,
+            tries,
+            seed,
+            weld,
+        } => {
+            use lrmesh::render::{self, Axis, ColorMode, RenderOptions};
+            use lrmesh::CornerOps;
+            let options = RenderOptions {
+                width: size.0,
+                height: size.1,
+                mode: match mode {
+                    RenderMode::Ring => ColorMode::Ring,
+                    RenderMode::Classes => ColorMode::Classes,
+                },
+                azimuth: view.0,
+                elevation: view.1,
+                up: match up {
+                    UpAxis::X => Axis::X,
+                    UpAxis::Y => Axis::Y,
+                    UpAxis::Z => Axis::Z,
+                },
+                perspective,
+                samples,
+                ring_lines,
+                ..RenderOptions::default()
+            };
+            let image = if is_container(&mesh) {
+                let bytes = map(&mesh)?;
+                let view =
+                    read::open(&bytes, &Limits::default()).map_err(|e| e.with_file(&mesh))?;
+                let lr = view.lr().ok_or_else(|| {
+                    Error::InvalidMesh(format!(
+                        "{}: render needs LR connectivity, the file holds {}",
+                        mesh.display(),
+                        view.summary().connectivity
+                    ))
+                })?;
+                let positions: Vec<[f32; 3]> = (0..lr.vertex_id_bound())
+                    .map(|v| view.position(lrmesh::Vertex(v)))
+                    .collect();
+                progress::step("rendering", || render::render(lr, &positions, &options))?
+            } else {
+                let input = load(&mesh, weld)?;
+                let table = progress::step("building the corner table", || {
+                    CornerTable::from_mesh(&input)
+                })?;
+                let lr = progress::step("building the LR", || {
+                    Lr::build(&table, &LrOptions { tries, seed })
+                })?;
+                let positions: Vec<[f32; 3]> = (0..lr.vertex_id_bound())
+                    .map(|v| input.positions[lr.input_vertex(lrmesh::Vertex(v)) as usize])
+                    .collect();
+                progress::step("rendering", || {
+                    render::render(lr.tables(), &positions, &options)
+                })?
+            };
+            let io_error = |source| Error::Io {
+                path: output.clone(),
+                source,
+            };
+            let file = std::fs::File::create(&output).map_err(io_error)?;
+            image
+                .write_png(std::io::BufWriter::new(file))
+                .map_err(io_error)?;
+            eprintln!(
+                "wrote {}: {}x{} pixels",
+                output.display(),
+                image.width(),
+                image.height()
+            );
+        }
+        Command::Bench {
+            mesh,
+            json,
+            runs,
+            weld,
+        } => {
+            let input = load(&mesh, weld)?;
+            let bar = progress::spinner("benchmarking");
+            let report = lrmesh::bench::run(
+                &input,
+                &lrmesh::bench::BenchOptions {
+                    runs: runs as usize,
+                    ..Default::default()
+                },
+                &mut |step| bar.set_message(format!("benchmarking: {step}")),
+            )?;
+            bar.finish_and_clear();
+            if json {
+                say!(
+                    "{}",
+                    serde_json::to_string_pretty(&report).expect("a bench report serialises")
+                );
+            } else {
+                show(&report);
+            }
         }
         Command::Convert {
             input,

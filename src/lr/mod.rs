@@ -188,6 +188,61 @@ impl Lr {
     }
 }
 
+/// The class of a canonical LR triangle, as coloured in the LR paper's Fig. 1 and Fig. 7.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum TriangleClass {
+    /// No ring edge, stored in VO.
+    T0,
+    /// A T0 stored in a wart's redundant slot (`T0^w`).
+    T0Wart,
+    /// One ring edge, on the left (invaded) side.
+    T1Left,
+    /// One ring edge, on the right side.
+    T1Right,
+    /// Two ring edges (a dead end).
+    T2,
+    /// A T2 whose redundant slot holds a T0 (`T2^w`, a wart).
+    T2Wart,
+}
+
+impl<W: Words> LrTables<W> {
+    /// The class of canonical triangle `t`; `None` when `t` is not one ([`Self::is_triangle`]).
+    /// Renderers and statistics read it; the operators never need it.
+    pub fn triangle_class(&self, t: Triangle) -> Option<TriangleClass> {
+        if !self.is_triangle(t) {
+            return None;
+        }
+        if t.0 >= 2 * self.m_r {
+            return Some(TriangleClass::T0);
+        }
+        let (v, side) = (t.0 / 2, (t.0 % 2) as usize);
+        if self.wart(v, side) {
+            return Some(TriangleClass::T0Wart);
+        }
+        let p = self.ring_prev(v);
+        Some(if self.tip(v, side) == p {
+            if self.wart(p, side) {
+                TriangleClass::T2Wart
+            } else {
+                TriangleClass::T2
+            }
+        } else if side == tables::LEFT {
+            TriangleClass::T1Left
+        } else {
+            TriangleClass::T1Right
+        })
+    }
+
+    /// The ring vertices of ring `ring` (ids are consecutive along a ring), or `None` past
+    /// the last ring.
+    pub fn ring_range(&self, ring: usize) -> Option<std::ops::Range<u32>> {
+        if ring + 1 >= self.ring_starts.count() {
+            return None;
+        }
+        Some(self.ring_starts.at(ring)..self.ring_starts.at(ring + 1))
+    }
+}
+
 /// The operators of [`Lr::tables`].
 impl CornerOps for Lr {
     fn vertex_id_bound(&self) -> u32 {

@@ -1,0 +1,413 @@
+//! One-run comparison of the connectivity representations (`lrmesh bench`, and the `lr`
+//! bench): size, build and open times, and the loops of the LR paper's Fig. 10 (c.v and c.o
+//! over every corner, valence and normal of every vertex, contour walks) as ratios to the
+//! corner table, all timed in the same process with [`std::time::Instant`], each step the
+//! median of several runs.
+//!
+//! The loops live here once, for this report and for the bench binaries.
+
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+use crate::corner_table::CornerTable;
+use crate::edgebreaker;
+use crate::error::Result;
+use crate::ids::{Triangle, Vertex};
+use crate::lr::{Lr, LrOptions};
+use crate::mesh::Mesh;
+use crate::ops::{self, CornerOps, Plane};
+use crate::read;
+use crate::strips::{Cts, StripOptions};
+use crate::write::{self, EncodeOptions};
+
+/// The median wall-clock time of `runs` calls of `f` (at least one), its result kept alive
+/// past the timer.
+pub fn median_time<R>(runs: usize, mut f: impl FnMut() -> R) -> Duration {
+    let mut times: Vec<Duration> = (0..runs.max(1))
+        .map(|_| {
+            let start = Instant::now();
+            black_box(f());
+            start.elapsed()
+        })
+        .collect();
+    times.sort();
+    times[times.len() / 2]
+}
+
+/// Sixteen planes across the bounding box of `positions` (slightly tilted from the third
+/// axis), each with a triangle of `mesh` it cuts: the starts of the contour walks. The planes
+/// depend on the positions only, so every representation walks the same contours.
+pub fn contour_starts<M: CornerOps>(mesh: &M, positions: &[[f32; 3]]) -> Vec<(Plane, Triangle)> {
+    let (lo, hi) = positions
+        .iter()
+        .filter(|p| p[2].is_finite())
+        .fold((f32::MAX, f32::MIN), |(lo, hi), p| {
+            (lo.min(p[2]), hi.max(p[2]))
+        });
+    if lo > hi {
+        return Vec::new();
+    }
+    (0..16)
+        .filter_map(|k| {
+            let plane = Plane {
+                normal: [0.05, 0.02, 1.0],
+                offset: lo + (hi - lo) * (k as f32 + 0.5) / 16.0,
+            };
+            let t = mesh.triangles().find(|&t| {
+                let above = mesh
+                    .triangle_vertices(t)
+                    .map(|v| positions.get(v.idx()).is_some_and(|&p| plane.above(p)));
+                above[0] != above[1] || above[1] != above[2]
+            })?;
+            Some((plane, t))
+        })
+        .collect()
+}
+
+/// Names of the Fig. 10 loops, in the order of [`LoopTimes`].
+pub const LOOP_NAMES: [&str; 5] = ["c.v", "c.o", "valence", "normals", "contour"];
+
+/// Times of the Fig. 10 loops on one representation, with the items each visits.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LoopTimes {
+    /// Items per loop: corners, corners, vertices, vertices, triangles walked.
+    pub items: [usize; 5],
+    /// Median time per loop.
+    pub times: [Duration; 5],
+}
+
+impl LoopTimes {
+    /// Nanoseconds per item of loop `i`.
+    pub fn ns_per_item(&self, i: usize) -> f64 {
+        self.times[i].as_secs_f64() * 1e9 / self.items[i].max(1) as f64
+    }
+
+    /// Time per item of each loop as a ratio to `baseline`'s.
+    pub fn ratios(&self, baseline: &LoopTimes) -> [f64; 5] {
+        [0, 1, 2, 3, 4].map(|i| self.ns_per_item(i) / baseline.ns_per_item(i))
+    }
+}
+
+/// Runs the Fig. 10 loops on `mesh` (`positions` indexed by its vertex ids), each `runs`
+/// times, and keeps the medians.
+pub fn fig10_loops<M: CornerOps>(mesh: &M, positions: &[[f32; 3]], runs: usize) -> LoopTimes {
+    let corners = mesh.corners().count();
+    let vertices = mesh.vertices().count();
+    let starts = contour_starts(mesh, positions);
+    let walk = || {
+        starts
+            .iter()
+            .map(|(plane, t)| ops::contour(mesh, positions, plane, *t).len())
+            .sum::<usize>()
+    };
+    let walked = walk();
+    LoopTimes {
+        items: [corners, corners, vertices, vertices, walked],
+        times: [
+            median_time(runs, || {
+                mesh.corners().fold(0u32, |a, c| a ^ mesh.vertex(c).0)
+            }),
+            median_time(runs, || {
+                mesh.corners()
+                    .fold(0u32, |a, c| a ^ mesh.opposite(c).map_or(0, |o| o.0))
+            }),
+            median_time(runs, || {
+                mesh.vertices().map(|v| ops::valence(mesh, v)).sum::<u32>()
+            }),
+            median_time(runs, || ops::vertex_normals(mesh, positions)),
+            median_time(runs, walk),
+        ],
+    }
+}
+
+/// Options of [`run`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BenchOptions {
+    /// Timed runs of every step; medians are reported.
+    pub runs: usize,
+    /// LR construction options (owned LR and the container).
+    pub lr: LrOptions,
+    /// Stripping options of the CTS.
+    pub strips: StripOptions,
+}
+
+impl Default for BenchOptions {
+    fn default() -> Self {
+        BenchOptions {
+            runs: 5,
+            lr: LrOptions::default(),
+            strips: StripOptions::default(),
+        }
+    }
+}
+
+/// One representation's row of the report. JSON keys are the field names; times in
+/// milliseconds, loops as ratios of time per item to the corner table's (`null` where the
+/// representation has no such step or no random access).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct BenchRow {
+    /// The representation.
+    pub name: &'static str,
+    /// Bytes of connectivity.
+    pub bytes: u64,
+    /// Connectivity bits per triangle.
+    pub bits_per_triangle: f64,
+    /// Construction time (see [`BenchReport`] for what each row's build covers).
+    pub build_ms: Option<f64>,
+    /// Time to open (validate) or decode the stored form.
+    pub open_ms: Option<f64>,
+    /// The Fig. 10 loops' time per item as ratios to the corner table's; `None` without
+    /// random access.
+    pub loops: Option<LoopFigures>,
+}
+
+/// One figure per Fig. 10 loop.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct LoopFigures {
+    /// c.v over every corner.
+    pub c_v: f64,
+    /// c.o over every corner.
+    pub c_o: f64,
+    /// Valence of every vertex.
+    pub valence: f64,
+    /// Normal of every vertex.
+    pub normals: f64,
+    /// Contour walks (per triangle walked).
+    pub contour: f64,
+}
+
+impl LoopFigures {
+    fn new(f: [f64; 5]) -> LoopFigures {
+        LoopFigures {
+            c_v: f[0],
+            c_o: f[1],
+            valence: f[2],
+            normals: f[3],
+            contour: f[4],
+        }
+    }
+
+    /// The figures in the order of [`LOOP_NAMES`].
+    pub fn to_array(&self) -> [f64; 5] {
+        [self.c_v, self.c_o, self.valence, self.normals, self.contour]
+    }
+}
+
+/// The comparison of [`run`]: one row per representation, the corner table first.
+///
+/// Build times: the corner table from the mesh; owned LR, Edgebreaker and strips from the
+/// corner table; the LR view's is the whole container's encoding from the mesh
+/// ([`write::encode`]). Open times: [`read::open`] (validation) for the LR view, decoding for
+/// Edgebreaker.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct BenchReport {
+    /// Vertices of the mesh as read.
+    pub vertices: usize,
+    /// Triangles of the mesh as read.
+    pub triangles: usize,
+    /// Timed runs per step.
+    pub runs: usize,
+    /// The corner table's nanoseconds per item of each loop (the ratios' baseline).
+    pub baseline_ns: LoopFigures,
+    /// The rows.
+    pub rows: Vec<BenchRow>,
+}
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+/// A row with sizes, times and the loops' ratios to `baseline`.
+fn row(
+    name: &'static str,
+    bytes: u64,
+    triangles: usize,
+    build: Option<Duration>,
+    open: Option<Duration>,
+    loops: Option<(&LoopTimes, &LoopTimes)>,
+) -> BenchRow {
+    BenchRow {
+        name,
+        bytes,
+        bits_per_triangle: 8.0 * bytes as f64 / triangles.max(1) as f64,
+        build_ms: build.map(ms),
+        open_ms: open.map(ms),
+        loops: loops.map(|(l, baseline)| LoopFigures::new(l.ratios(baseline))),
+    }
+}
+
+/// Builds every representation of `mesh` and times it, reporting each step's name to
+/// `progress` before it starts.
+///
+/// # Errors
+/// Those of the constructions ([`CornerTable::from_mesh`], [`Lr::build`], [`write::encode`],
+/// [`edgebreaker::encode`], [`Cts::build`]) on this mesh.
+pub fn run(
+    mesh: &Mesh,
+    options: &BenchOptions,
+    progress: &mut dyn FnMut(&str),
+) -> Result<BenchReport> {
+    let runs = options.runs.max(1);
+    let n = mesh.triangles.len();
+    let mut rows = Vec::new();
+
+    progress("corner table");
+    let table = CornerTable::from_mesh(mesh)?;
+    let ct_build = median_time(runs, || CornerTable::from_mesh(mesh));
+    let ct_positions = table.extend_to_copies(&mesh.positions);
+    let ct_loops = fig10_loops(&table, &ct_positions, runs);
+    let ct_refs = table.v_table().len() + table.o_table().len() + table.c_table().len();
+    rows.push(row(
+        "corner table",
+        4 * ct_refs as u64,
+        n,
+        Some(ct_build),
+        None,
+        Some((&ct_loops, &ct_loops)),
+    ));
+
+    progress("LR (owned)");
+    let lr = Lr::build(&table, &options.lr)?;
+    let lr_build = median_time(runs, || Lr::build(&table, &options.lr));
+    let lr_positions: Vec<[f32; 3]> = (0..lr.vertex_id_bound())
+        .map(|v| {
+            let input = lr.input_vertex(Vertex(v)) as usize;
+            mesh.positions.get(input).copied().unwrap_or([0.0; 3])
+        })
+        .collect();
+    let lr_loops = fig10_loops(&lr, &lr_positions, runs);
+    rows.push(row(
+        "LR (owned)",
+        4 * lr.tables().references(),
+        n,
+        Some(lr_build),
+        None,
+        Some((&lr_loops, &ct_loops)),
+    ));
+
+    progress("LR (view of the .lrm bytes)");
+    let encode_options = EncodeOptions {
+        lr: options.lr,
+        ..EncodeOptions::default()
+    };
+    let bytes = write::encode(mesh, &encode_options)?;
+    let encode_time = median_time(runs, || write::encode(mesh, &encode_options));
+    let limits = read::Limits::default();
+    let view = read::open(&bytes, &limits)?;
+    let open_time = median_time(runs, || {
+        read::open(&bytes, &limits).map(|v| v.triangle_count())
+    });
+    if let Some(tables) = view.lr() {
+        let positions: Vec<[f32; 3]> = (0..tables.vertex_id_bound())
+            .map(|v| view.position(Vertex(v)))
+            .collect();
+        let view_loops = fig10_loops(tables, &positions, runs);
+        rows.push(row(
+            "LR (view)",
+            view.summary().connectivity_bytes,
+            n,
+            Some(encode_time),
+            Some(open_time),
+            Some((&view_loops, &ct_loops)),
+        ));
+    }
+
+    // Compact LR (src/lr/compact*.rs): its row goes here, built like "LR (owned)" above.
+
+    progress("Edgebreaker");
+    let eb = edgebreaker::encode(&table)?;
+    let eb_build = median_time(runs, || edgebreaker::encode(&table));
+    let eb_limits = edgebreaker::Limits::default();
+    let eb_decode = median_time(runs, || edgebreaker::decode(&eb.bytes, &eb_limits));
+    rows.push(row(
+        "Edgebreaker",
+        eb.bytes.len() as u64,
+        n,
+        Some(eb_build),
+        Some(eb_decode),
+        None,
+    ));
+
+    progress("strips (CTS)");
+    let cts = Cts::build(&table, &options.strips)?;
+    let cts_build = median_time(runs, || Cts::build(&table, &options.strips));
+    let cts_loops = fig10_loops(&cts, &ct_positions, runs);
+    let cts_bytes = (cts.bits_per_triangle() * cts.triangle_count() as f64 / 8.0).round() as u64;
+    rows.push(row(
+        "strips (CTS)",
+        cts_bytes,
+        n,
+        Some(cts_build),
+        None,
+        Some((&cts_loops, &ct_loops)),
+    ));
+
+    Ok(BenchReport {
+        vertices: mesh.positions.len(),
+        triangles: n,
+        runs,
+        baseline_ns: LoopFigures::new([0, 1, 2, 3, 4].map(|i| ct_loops.ns_per_item(i))),
+        rows,
+    })
+}
+
+impl std::fmt::Display for BenchReport {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        writeln!(
+            f,
+            "mesh: {} vertices, {} triangles; median of {} runs per step",
+            self.vertices, self.triangles, self.runs
+        )?;
+        writeln!(
+            f,
+            "{:<16} {:>11} {:>9} {:>10} {:>10} {:>7} {:>7} {:>8} {:>8} {:>8}",
+            "representation",
+            "bytes",
+            "bits/tri",
+            "build ms",
+            "open ms",
+            "c.v",
+            "c.o",
+            "valence",
+            "normals",
+            "contour"
+        )?;
+        let opt = |x: Option<f64>, width: usize, digits: usize| match x {
+            Some(x) => format!("{x:>width$.digits$}"),
+            None => format!("{:>width$}", "-"),
+        };
+        for r in &self.rows {
+            let l = r.loops.map(|l| l.to_array());
+            writeln!(
+                f,
+                "{:<16} {:>11} {:>9.2} {} {} {} {} {} {} {}",
+                r.name,
+                r.bytes,
+                r.bits_per_triangle,
+                opt(r.build_ms, 10, 2),
+                opt(r.open_ms, 10, 2),
+                opt(l.map(|l| l[0]), 7, 2),
+                opt(l.map(|l| l[1]), 7, 2),
+                opt(l.map(|l| l[2]), 8, 2),
+                opt(l.map(|l| l[3]), 8, 2),
+                opt(l.map(|l| l[4]), 8, 2),
+            )?;
+        }
+        write!(f, "loops: time per item as a ratio to the corner table's (")?;
+        for (i, (name, ns)) in LOOP_NAMES
+            .iter()
+            .zip(self.baseline_ns.to_array())
+            .enumerate()
+        {
+            let sep = if i == 0 { "" } else { ", " };
+            write!(f, "{sep}{name} {ns:.2} ns")?;
+        }
+        writeln!(f, ")")?;
+        writeln!(
+            f,
+            "build: corner table from the mesh; LR (owned), Edgebreaker, CTS from the corner \
+             table; LR (view) encodes the whole .lrm from the mesh. open: validation of the \
+             .lrm (LR view), decoding (Edgebreaker)"
+        )
+    }
+}
