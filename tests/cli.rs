@@ -1,4 +1,4 @@
-//! The `lrmesh` command end to end: info, stats, convert, encode, verify, decode.
+//! The `lrmesh` command end to end: info, stats, convert, encode, verify, decode, render, bench.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -142,5 +142,153 @@ fn bad_mesh_file_is_a_clean_error() {
     assert!(
         stderr.starts_with("error: ") && stderr.contains("bad.off"),
         "{stderr}"
+    );
+}
+
+/// Width, height and colour type of a PNG file.
+fn png_info(path: &Path) -> (u32, u32, png::ColorType) {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let info = decoder.read_info().unwrap().info().clone();
+    (info.width, info.height, info.color_type)
+}
+
+#[test]
+fn render_writes_a_png_and_nothing_else_to_stderr() {
+    let png = scratch("elephant.png");
+    let out = lrmesh(&[
+        "render",
+        &corpus("elephant-with-holes.off"),
+        "-o",
+        png.to_str().unwrap(),
+        "--mode",
+        "classes",
+        "--size",
+        "160x120",
+        "--view",
+        "-45,10",
+        "--perspective",
+        "--ring-lines",
+    ]);
+    assert!(out.status.success());
+    // No progress bar when stderr is not a terminal: one line, no escape codes.
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        format!("wrote {}: 160x120 pixels\n", png.display())
+    );
+    assert!(out.stdout.is_empty());
+    assert_eq!(png_info(&png), (160, 120, png::ColorType::Rgb));
+}
+
+#[test]
+fn render_reads_an_lr_container_and_refuses_edgebreaker() {
+    let lrm = scratch("bunny-render.lrm");
+    let lrm = lrm.to_str().unwrap();
+    assert!(lrmesh(&["encode", &corpus("bunny_small.obj"), "-o", lrm])
+        .status
+        .success());
+    let png = scratch("bunny-from-lrm.png");
+    let out = lrmesh(&[
+        "render",
+        lrm,
+        "-o",
+        png.to_str().unwrap(),
+        "--size",
+        "64x64",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(png_info(&png).0, 64);
+
+    let eb = scratch("bunny-render-eb.lrm");
+    let eb = eb.to_str().unwrap();
+    let encode = &["encode", &corpus("bunny_small.obj"), "-o", eb];
+    assert!(
+        lrmesh(&[&encode[..], &["--connectivity", "edgebreaker"]].concat())
+            .status
+            .success()
+    );
+    let out = lrmesh(&["render", eb, "-o", png.to_str().unwrap()]);
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("render needs LR connectivity"), "{stderr}");
+}
+
+#[test]
+fn render_rejects_bad_sizes_and_views() {
+    let png = scratch("never.png");
+    for args in [
+        ["--size", "0x10"],
+        ["--size", "100"],
+        ["--size", "20000x10"],
+        ["--view", "10"],
+        ["--view", "nan,3"],
+    ] {
+        let out = lrmesh(
+            &[
+                &[
+                    "render",
+                    &corpus("tetrahedron.off"),
+                    "-o",
+                    png.to_str().unwrap(),
+                ],
+                &args[..],
+            ]
+            .concat(),
+        );
+        assert!(!out.status.success(), "{args:?}");
+    }
+    assert!(!png.exists());
+}
+
+#[test]
+fn bench_json_has_one_row_per_representation() {
+    let out = lrmesh(&["bench", &corpus("knot1.off"), "--json", "--runs", "1"]);
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let report = json(&out);
+    assert_eq!(report["triangles"], 6400);
+    let rows = report["rows"].as_array().unwrap();
+    let names: Vec<&str> = rows.iter().map(|r| r["name"].as_str().unwrap()).collect();
+    for name in [
+        "corner table",
+        "LR (owned)",
+        "LR (view)",
+        "Edgebreaker",
+        "strips (CTS)",
+    ] {
+        assert!(names.contains(&name), "no row {name} in {names:?}");
+    }
+    assert_eq!(names[0], "corner table");
+    for key in ["c_v", "c_o", "valence", "normals", "contour"] {
+        assert_eq!(rows[0]["loops"][key], 1.0, "corner table {key}");
+        assert!(report["baseline_ns"][key].as_f64().unwrap() > 0.0);
+    }
+    for row in rows {
+        let bytes = row["bytes"].as_f64().unwrap();
+        let bpt = row["bits_per_triangle"].as_f64().unwrap();
+        assert!(
+            bytes > 0.0 && (bpt - 8.0 * bytes / 6400.0).abs() < 1e-9,
+            "{row}"
+        );
+        assert!(row["build_ms"].as_f64().unwrap() >= 0.0);
+    }
+    // Edgebreaker has no random access; the LR view opens from bytes.
+    let row = |name: &str| rows.iter().find(|r| r["name"] == name).unwrap();
+    assert!(row("Edgebreaker")["loops"].is_null());
+    assert!(row("LR (view)")["open_ms"].as_f64().is_some());
+    assert!(row("LR (owned)")["bytes"].as_f64() < row("corner table")["bytes"].as_f64());
+
+    let text = lrmesh(&["bench", &corpus("tetrahedron.off"), "--runs", "1"]);
+    assert!(text.status.success());
+    let text = String::from_utf8_lossy(&text.stdout);
+    assert!(
+        text.contains("representation") && text.contains("Edgebreaker"),
+        "{text}"
     );
 }
