@@ -11,30 +11,14 @@ use common::median_time;
 
 use std::time::Duration;
 
+use lrmesh::bench::{fig10_loops, LOOP_NAMES};
 use lrmesh::lr::Lr;
-use lrmesh::ops;
 use lrmesh::read::{open, Limits};
 use lrmesh::write::{encode, EncodeOptions};
 use lrmesh::{CornerOps, CornerTable};
 
 fn ms(d: Duration) -> f64 {
     d.as_secs_f64() * 1e3
-}
-
-fn loops<M: CornerOps>(mesh: &M, positions: &[[f32; 3]], runs: usize) -> [Duration; 4] {
-    [
-        median_time(runs, || {
-            mesh.corners().fold(0u32, |a, c| a ^ mesh.vertex(c).0)
-        }),
-        median_time(runs, || {
-            mesh.corners()
-                .fold(0u32, |a, c| a ^ mesh.opposite(c).map_or(0, |o| o.0))
-        }),
-        median_time(runs, || {
-            mesh.vertices().map(|v| ops::valence(mesh, v)).sum::<u32>()
-        }),
-        median_time(runs, || ops::vertex_normals(mesh, positions)),
-    ]
 }
 
 fn main() {
@@ -87,31 +71,24 @@ fn main() {
     let positions: Vec<[f32; 3]> = (0..owned.vertex_id_bound())
         .map(|v| view.position(lrmesh::Vertex(v)))
         .collect();
-    let ct = loops(&table, &table.extend_to_copies(&mesh.positions), runs);
-    let lr = loops(&owned, &positions, runs);
-    let zero_copy = loops(view.lr().expect("an LR container"), &positions, runs);
+    let ct = fig10_loops(&table, &table.extend_to_copies(&mesh.positions), runs);
+    let lr = fig10_loops(&owned, &positions, runs);
+    let zero_copy = fig10_loops(view.lr().expect("an LR container"), &positions, runs);
+    let (lr_ratio, view_ratio) = (lr.ratios(&ct), zero_copy.ratios(&ct));
     println!();
     println!(
         "{:<24} {:>10} {:>10} {:>10} {:>12} {:>12}",
         "Fig. 10 loop (ms)", "CT", "LR owned", "LR view", "owned / CT", "view / CT"
     );
-    for (i, name) in [
-        "c.v, every corner",
-        "c.o, every corner",
-        "valence, every vertex",
-        "normal, every vertex",
-    ]
-    .iter()
-    .enumerate()
-    {
+    for (i, name) in LOOP_NAMES.iter().enumerate() {
         println!(
             "{:<24} {:>10.2} {:>10.2} {:>10.2} {:>12.2} {:>12.2}",
             name,
-            ms(ct[i]),
-            ms(lr[i]),
-            ms(zero_copy[i]),
-            lr[i].as_secs_f64() / ct[i].as_secs_f64(),
-            zero_copy[i].as_secs_f64() / ct[i].as_secs_f64()
+            ms(ct.times[i]),
+            ms(lr.times[i]),
+            ms(zero_copy.times[i]),
+            lr_ratio[i],
+            view_ratio[i]
         );
     }
 }

@@ -2,16 +2,21 @@
 //!
 //! `cargo bench --bench corner_table` prints, before divan's table, the mesh used and the
 //! peak heap memory of one construction (measured by a counting allocator). Set
-//! `LRMESH_BENCH_TRIANGLES` to change the mesh size (default 2,000,000).
+//! `LRMESH_BENCH_TRIANGLES` to change the mesh size (default 2,000,000), or
+//! `LRMESH_BENCH_MESH=path` for a mesh file. The Fig. 10 loops are those of `lrmesh bench`
+//! (`lrmesh::bench`), here one divan bench each.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 use std::sync::LazyLock;
 
+mod common;
+
 use divan::counter::ItemsCount;
 use divan::{black_box, Bencher};
+use lrmesh::bench::contour_starts;
 use lrmesh::ops::{self, Plane};
-use lrmesh::{generate, CornerOps, CornerTable, Mesh, TopologyReport, Triangle};
+use lrmesh::{CornerOps, CornerTable, Mesh, TopologyReport, Triangle};
 
 /// The system allocator, counting the bytes in use and their high-water mark.
 struct PeakAlloc;
@@ -38,34 +43,16 @@ unsafe impl GlobalAlloc for PeakAlloc {
 #[global_allocator]
 static ALLOC: PeakAlloc = PeakAlloc;
 
-static MESH: LazyLock<Mesh> = LazyLock::new(|| {
-    let triangles = std::env::var("LRMESH_BENCH_TRIANGLES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(2_000_000);
-    generate::irregular_torus(triangles, 1)
-});
+static MESH: LazyLock<Mesh> = LazyLock::new(common::bench_mesh);
 static TABLE: LazyLock<CornerTable> = LazyLock::new(|| CornerTable::from_mesh(&MESH).unwrap());
 
-/// Horizontal planes through the torus and, for each, one triangle it cuts: the contour bench
-/// walks these.
-static CONTOUR_STARTS: LazyLock<Vec<(Plane, Triangle)>> = LazyLock::new(|| {
-    let planes = (0..16).map(|k| Plane {
-        normal: [0.05, 0.02, 1.0],
-        offset: -0.3 + 0.6 * (k as f32 + 0.5) / 16.0,
-    });
-    planes
-        .filter_map(|plane| {
-            let cut = TABLE.triangles().find(|&t| {
-                let above = TABLE
-                    .triangle_vertices(t)
-                    .map(|v| plane.above(MESH.positions[v.idx()]));
-                above[0] != above[1] || above[1] != above[2]
-            })?;
-            Some((plane, cut))
-        })
-        .collect()
-});
+/// Positions by corner-table vertex (copies of split vertices included).
+static POSITIONS: LazyLock<Vec<[f32; 3]>> =
+    LazyLock::new(|| TABLE.extend_to_copies(&MESH.positions));
+
+/// The planes of the contour walks, each with a triangle it cuts (the same as `lrmesh bench`).
+static CONTOUR_STARTS: LazyLock<Vec<(Plane, Triangle)>> =
+    LazyLock::new(|| contour_starts(&*TABLE, &POSITIONS));
 
 fn triangles() -> usize {
     MESH.triangles.len()
@@ -96,7 +83,7 @@ fn main() {
     drop(table);
     let walked: usize = CONTOUR_STARTS
         .iter()
-        .map(|(plane, t)| ops::contour(&*TABLE, &mesh.positions, plane, *t).len())
+        .map(|(plane, t)| ops::contour(&*TABLE, &POSITIONS, plane, *t).len())
         .sum();
     println!(
         "contour bench: {} planes, {walked} triangles walked",
@@ -159,7 +146,7 @@ fn valence_of_every_vertex(bencher: Bencher) {
 #[divan::bench(sample_count = 20)]
 fn normal_of_every_vertex(bencher: Bencher) {
     let table = &*TABLE;
-    let positions = &MESH.positions;
+    let positions = &*POSITIONS;
     bencher
         .counter(ItemsCount::new(table.vertex_id_bound() as usize))
         .bench(|| ops::vertex_normals(table, positions));
@@ -169,7 +156,7 @@ fn normal_of_every_vertex(bencher: Bencher) {
 #[divan::bench(sample_count = 20)]
 fn contour_walk(bencher: Bencher) {
     let table = &*TABLE;
-    let positions = &MESH.positions;
+    let positions = &*POSITIONS;
     let walked: usize = CONTOUR_STARTS
         .iter()
         .map(|(plane, t)| ops::contour(table, positions, plane, *t).len())

@@ -1,24 +1,12 @@
-//! Helpers shared by the bench binaries: timing and the meshes to time.
+//! Helpers shared by the bench binaries: the meshes to time. Timing and the LR paper's
+//! Fig. 10 loops live in the library ([`lrmesh::bench`]), shared with `lrmesh bench`.
 #![allow(dead_code)]
-
-use std::hint::black_box;
-use std::time::{Duration, Instant};
 
 use lrmesh::io::{read_mesh, ReadOptions};
 use lrmesh::{generate, Mesh};
 
-/// The median wall-clock time of `runs` calls of `f`, its result kept alive past the timer.
-pub fn median_time<R>(runs: usize, mut f: impl FnMut() -> R) -> Duration {
-    let mut times: Vec<Duration> = (0..runs)
-        .map(|_| {
-            let start = Instant::now();
-            black_box(f());
-            start.elapsed()
-        })
-        .collect();
-    times.sort();
-    times[runs / 2]
-}
+#[allow(unused_imports)]
+pub use lrmesh::bench::median_time;
 
 /// The triangle count of the generated mesh: `LRMESH_BENCH_TRIANGLES`, 2,000,000 by default.
 pub fn generated_triangles() -> u32 {
