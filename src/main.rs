@@ -227,6 +227,9 @@ enum Connectivity {
     Lr,
     /// Edgebreaker: the smallest, decoded sequentially.
     Edgebreaker,
+    /// Constrained triangle strips with the adjacent-strips table: a rendering index list
+    /// that also answers corner queries on the loaded file.
+    Strips,
 }
 
 /// Maps a container file read-only.
@@ -334,6 +337,7 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
                 connectivity: match connectivity {
                     Connectivity::Lr => write::Connectivity::Lr,
                     Connectivity::Edgebreaker => write::Connectivity::Edgebreaker,
+                    Connectivity::Strips => write::Connectivity::Strips,
                 },
                 lr: LrOptions { tries, seed },
                 keep_order,
