@@ -3,7 +3,8 @@
 //! only live in `../shared/meshes`, and a generated irregular torus of 2M triangles.
 //!
 //! `cargo bench --bench edgebreaker`; `LRMESH_BENCH_TRIANGLES` changes the generated size,
-//! `LRMESH_BENCH_RUNS` the number of runs.
+//! `LRMESH_BENCH_RUNS` the number of runs, `LRMESH_BENCH_FILTER` keeps the meshes whose name
+//! contains it; with `LRMESH_BENCH_DECODE_ONLY` set, encoding is not timed (for profiling).
 
 mod common;
 
@@ -56,6 +57,7 @@ fn main() {
         "mesh", "triangles", "bpt", "clers", "topo B", "enc Mtri/s", "dec Mtri/s"
     );
     let filter = std::env::var("LRMESH_BENCH_FILTER").unwrap_or_default();
+    let decode_only = std::env::var_os("LRMESH_BENCH_DECODE_ONLY").is_some();
     for (name, mesh) in meshes() {
         if !name.contains(&filter) {
             continue;
@@ -73,7 +75,11 @@ fn main() {
         } else {
             runs * 3
         };
-        let t_enc = median_time(runs, || encode(&table).unwrap());
+        let t_enc = if decode_only {
+            Duration::ZERO
+        } else {
+            median_time(runs, || encode(&table).unwrap())
+        };
         let t_dec = median_time(runs, || decode(&enc.bytes, &limits).unwrap());
         let rate = |d: Duration| nt / d.as_secs_f64() / 1e6;
         println!(

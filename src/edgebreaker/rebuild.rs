@@ -43,6 +43,7 @@ const ORDER: u32 = 1;
 const HIST: usize = 5usize.pow(ORDER);
 /// Fan lengths are counted up to this.
 const FAN_CAP: u32 = 8;
+const _: () = assert!(FAN_CAP < 16, "chain lengths are stored in 4 bits");
 const CONTEXTS: usize = HIST * (FAN_CAP as usize + 1) * (FAN_CAP as usize + 1);
 
 /// The adaptive model of the CLERS stream.
@@ -85,7 +86,11 @@ impl Model {
 
     #[inline(always)]
     fn push(&mut self, s: u8) {
-        self.hist = (self.hist * 5 + s as usize) % HIST;
+        self.hist = if ORDER == 1 {
+            s as usize // symbols are below 5
+        } else {
+            (self.hist * 5 + s as usize) % HIST
+        };
     }
 
     /// Codes whether a non-handle `S` is a boundary `S`, and the length of its hole (at least 2).
@@ -99,14 +104,20 @@ impl Model {
 }
 
 /// The connectivity being rebuilt.
-struct State {
-    o: Vec<u32>,
+///
+/// Opposites are not stored as such: for every corner `x` whose edge facing `x.n` is glued,
+/// `d1[x]` is the next corner around its vertex in direction D1 (`x.n.o.n`), else `NONE`. The
+/// walks around a vertex, most of the decoding time, then cost one load per corner;
+/// `x.n.o` is `d1[x].p`, and the D2 step `y.p.o.p` is `d1[y.n].n`.
+struct State<W> {
+    d1: Vec<u32>,
+    /// Vertices of each triangle.
     v: Vec<[u32; 3]>,
     /// For a corner at either end of a chain of corners of one vertex linked by glued edges
-    /// (a fan being rebuilt), the corner at the other end; `len` its number of corners
-    /// (saturating). Maintained at every gluing, so that the context needs no walk.
-    end: Vec<u32>,
-    len: Vec<u8>,
+    /// (a fan being rebuilt), the corner at the other end and the chain's number of corners,
+    /// capped at [`FAN_CAP`] (all the context needs). Maintained at every gluing, so that the
+    /// context needs no walk.
+    chain: Vec<W>,
     /// Corner assignments left (see [`State::assign`]).
     budget: u32,
     /// Vertex ids still to give, counting down.
@@ -115,61 +126,148 @@ struct State {
 
 type Step<T = ()> = std::result::Result<T, &'static str>;
 
-impl State {
+/// A chain entry: the corner at the other end and the length, in one word. Most meshes use
+/// [`u32`] entries (corner ids below 2^28, lengths in the top 4 bits), larger ones [`u64`]:
+/// the decoder's memory is mostly fresh pages, so every byte per corner costs time.
+trait ChainWord: Copy + Default {
+    /// Whether corner ids below `corners` fit.
+    fn fits(corners: u64) -> bool;
+    fn entry(end: u32, len: u32) -> Self;
+    fn end(self) -> u32;
+    fn len(self) -> u32;
+}
+
+impl ChainWord for u32 {
+    #[inline(always)]
+    fn fits(corners: u64) -> bool {
+        corners <= 1 << 28
+    }
+    #[inline(always)]
+    fn entry(end: u32, len: u32) -> u32 {
+        (len << 28) | end
+    }
+    #[inline(always)]
+    fn end(self) -> u32 {
+        self & ((1 << 28) - 1)
+    }
+    #[inline(always)]
+    fn len(self) -> u32 {
+        self >> 28
+    }
+}
+
+impl ChainWord for u64 {
+    #[inline(always)]
+    fn fits(_: u64) -> bool {
+        true
+    }
+    #[inline(always)]
+    fn entry(end: u32, len: u32) -> u64 {
+        ((len as u64) << 32) | end as u64
+    }
+    #[inline(always)]
+    fn end(self) -> u32 {
+        self as u32
+    }
+    #[inline(always)]
+    fn len(self) -> u32 {
+        (self >> 32) as u32
+    }
+}
+
+impl<W: ChainWord> State<W> {
+    /// `c.o`, or `NONE`.
+    #[inline(always)]
+    fn opposite(&self, c: u32) -> u32 {
+        match self.d1.get(prev(c) as usize) {
+            Some(&d) if d != NONE => prev(d),
+            _ => NONE,
+        }
+    }
+
     /// Glues without chain bookkeeping (for handle edges, before their triangles exist).
     fn glue_early(&mut self, a: u32, b: u32) -> Step {
-        let (ai, bi) = (a as usize, b as usize);
-        if ai >= self.o.len() || bi >= self.o.len() || a / 3 == b / 3 {
+        let len = self.d1.len();
+        if a as usize >= len || b as usize >= len || a / 3 == b / 3 {
             return Err("handle corner out of range");
         }
-        if self.o[ai] != NONE || self.o[bi] != NONE {
+        if self.d1[prev(a) as usize] != NONE || self.d1[prev(b) as usize] != NONE {
             return Err("edge glued twice");
         }
-        self.o[ai] = b;
-        self.o[bi] = a;
+        self.d1[prev(a) as usize] = next(b);
+        self.d1[prev(b) as usize] = next(a);
         Ok(())
     }
 
+    /// Glues the edges facing `a` and `b`, given with their `.p` and `.n` (which the callers
+    /// often know without a division).
     #[inline(always)]
-    fn glue(&mut self, a: u32, b: u32) -> Step {
-        let (ai, bi) = (a as usize, b as usize);
-        if ai >= self.o.len() || bi >= self.o.len() {
+    fn glue3(&mut self, (pa, a, na): (u32, u32, u32), (pb, b, nb): (u32, u32, u32)) -> Step {
+        let len = self.d1.len();
+        if a as usize >= len || b as usize >= len {
             return Err("gate out of range");
         }
         if a / 3 == b / 3 {
             return Err("edge glued to its own triangle");
         }
-        if self.o[ai] != NONE || self.o[bi] != NONE {
+        let (pai, pbi) = (pa as usize, pb as usize);
+        if pai >= len || pbi >= len || self.d1[pai] != NONE || self.d1[pbi] != NONE {
             return Err("edge glued twice");
         }
-        self.o[ai] = b;
-        self.o[bi] = a;
-        self.merge_edge(a, b);
+        self.d1[pai] = nb;
+        self.d1[pbi] = na;
+        self.link(pb, na);
+        self.link(pa, nb);
         Ok(())
+    }
+
+    #[inline(always)]
+    fn glue(&mut self, a: u32, b: u32) -> Step {
+        self.glue3((prev(a), a, next(a)), (prev(b), b, next(b)))
+    }
+
+    /// Glues edge `k` (1: right, 2: left) of the new triangle whose tip is `c` to the gate
+    /// facing `g`, the tip of an earlier triangle.
+    #[inline(always)]
+    fn glue_new(&mut self, c: u32, k: u32, g: u32) -> Step {
+        let a = if k == 1 {
+            (c, c + 1, c + 2)
+        } else {
+            (c + 1, c + 2, c)
+        };
+        self.glue3(a, (g.wrapping_add(2), g, g.wrapping_add(1)))
     }
 
     /// A new triangle: three chains of one corner.
     #[inline(always)]
     fn create(&mut self, t: u32) {
-        for c in 3 * t..3 * t + 3 {
-            self.end[c as usize] = c;
-            self.len[c as usize] = 1;
+        let c = 3 * t as usize;
+        if let Some(e) = self.chain.get_mut(c..c + 3) {
+            for (k, e) in e.iter_mut().enumerate() {
+                *e = W::entry((c + k) as u32, 1);
+            }
         }
     }
 
     /// Joins the chain that ends (direction D1) at `a` to the chain that starts at `b`.
     #[inline(always)]
     fn link(&mut self, a: u32, b: u32) {
-        let a0 = self.end[a as usize];
+        let (Some(&ea), Some(&eb)) = (self.chain.get(a as usize), self.chain.get(b as usize))
+        else {
+            return;
+        };
+        let a0 = ea.end();
         if a0 == b {
             return; // the fan closes
         }
-        let b1 = self.end[b as usize];
-        let l = self.len[a as usize].saturating_add(self.len[b as usize]);
-        self.end[a0 as usize] = b1;
-        self.end[b1 as usize] = a0;
-        self.len[a0 as usize] = l;
-        self.len[b1 as usize] = l;
+        let b1 = eb.end();
+        let l = (ea.len() + eb.len()).min(FAN_CAP);
+        if let Some(e) = self.chain.get_mut(a0 as usize) {
+            *e = W::entry(b1, l);
+        }
+        if let Some(e) = self.chain.get_mut(b1 as usize) {
+            *e = W::entry(a0, l);
+        }
     }
 
     /// Chain bookkeeping for the edge now glued between the edges facing `a` and `b`.
@@ -188,7 +286,9 @@ impl State {
             return Err("corner reached twice");
         }
         self.budget -= 1;
-        self.v.as_flattened_mut()[c as usize] = id;
+        if let Some(v) = self.v.as_flattened_mut().get_mut(c as usize) {
+            *v = id;
+        }
         Ok(())
     }
 
@@ -198,28 +298,38 @@ impl State {
         Ok(self.n)
     }
 
+    /// The D1 successor of `x`, or `NONE`.
+    #[inline(always)]
+    fn step(&self, x: u32) -> u32 {
+        self.d1.get(x as usize).copied().unwrap_or(NONE)
+    }
+
     /// Gives vertex `id` to `a` and the corners after it in direction D1; returns the last.
     #[inline(always)]
     fn walk_assign(&mut self, a: u32, id: u32) -> Step<u32> {
         self.assign(a, id)?;
         let mut x = a;
         loop {
-            let d = self.o[next(x) as usize];
+            let d = self.step(x);
             if d == NONE {
                 return Ok(x);
             }
-            x = next(d);
+            x = d;
             self.assign(x, id)?;
         }
     }
 
-    /// Context of the symbol of the triangle glued to `active`: how many triangles are
-    /// already around the vertex a `C`, `L` or `S` would have as tip (the chain that starts at
-    /// `active.n`), and around the tip of an `R` (the chain that ends at `active.p`), capped.
+    /// Context of the symbol of the triangle glued to `active` (a tip corner): how many
+    /// triangles are already around the vertex a `C`, `L` or `S` would have as tip (the chain
+    /// that starts at `active.n`), and around the tip of an `R` (the chain that ends at
+    /// `active.p`), capped.
     #[inline(always)]
     fn fans(&self, active: u32) -> usize {
-        let f1 = (self.len[next(active) as usize] as u32).min(FAN_CAP);
-        let f2 = (self.len[prev(active) as usize] as u32).min(FAN_CAP);
+        let a = active as usize;
+        let (f1, f2) = match self.chain.get(a + 1..a + 3) {
+            Some(&[e1, e2]) => (e1.len(), e2.len()),
+            _ => (0, 0),
+        };
         (f1 * (FAN_CAP + 1) + f2) as usize
     }
 
@@ -228,11 +338,11 @@ impl State {
     fn walk_end(&self, a: u32) -> Option<u32> {
         let mut x = a;
         loop {
-            let d = self.o[next(x) as usize];
+            let d = self.step(x);
             if d == NONE {
                 return Some(x);
             }
-            x = next(d);
+            x = d;
             if x == a {
                 return None;
             }
@@ -246,11 +356,11 @@ impl State {
         self.assign(a, id)?;
         let mut x = a;
         loop {
-            let d = self.o[next(x) as usize];
+            let d = self.step(x);
             if d == NONE {
                 break;
             }
-            x = next(d);
+            x = d;
             if x == a {
                 return Ok(());
             }
@@ -258,11 +368,11 @@ impl State {
         }
         let mut y = a;
         loop {
-            let d = self.o[prev(y) as usize];
+            let d = self.step(next(y));
             if d == NONE {
                 break;
             }
-            y = prev(d);
+            y = next(d);
             self.assign(y, id)?;
         }
         self.glue(next(x), prev(y))
@@ -288,7 +398,7 @@ impl State {
     /// Numbers the external boundary of a component whose first triangle is `t0`, from its
     /// gate's first vertex on, the way the encoder did.
     fn external(&mut self, t0: u32) -> Step {
-        if self.o[3 * t0 as usize] != NONE {
+        if self.opposite(3 * t0) != NONE {
             return Err("first triangle of a component with boundary glued at its gate");
         }
         let s = 3 * t0 + 1;
@@ -322,12 +432,43 @@ pub(crate) fn rebuild<B: Bits, K: Known>(
     nt: u32,
     referenced: u32,
 ) -> Result<(Vec<[u32; 3]>, Tally)> {
-    let mut st = State {
-        o: vec![NONE; 3 * nt as usize],
+    if u32::fits(3 * nt as u64) && !force_wide() {
+        run::<B, K, u32>(b, k, topo, nt, referenced)
+    } else {
+        run::<B, K, u64>(b, k, topo, nt, referenced)
+    }
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Makes [`rebuild`] use [`u64`] chain entries on this thread, for tests.
+    static FORCE_WIDE: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+#[cfg(test)]
+fn force_wide() -> bool {
+    FORCE_WIDE.with(|f| f.get())
+}
+
+#[cfg(not(test))]
+#[inline(always)]
+fn force_wide() -> bool {
+    false
+}
+
+/// [`rebuild`] with chain entries of type `W`.
+fn run<B: Bits, K: Known, W: ChainWord>(
+    b: &mut B,
+    k: &mut K,
+    topo: &Topology,
+    nt: u32,
+    referenced: u32,
+) -> Result<(Vec<[u32; 3]>, Tally)> {
+    let mut st = State::<W> {
+        d1: vec![NONE; 3 * nt as usize],
         v: vec![[NONE; 3]; nt as usize],
         n: referenced,
-        end: vec![0; 3 * nt as usize],
-        len: vec![0; 3 * nt as usize],
+        chain: vec![W::default(); 3 * nt as usize],
         budget: 3 * nt,
     };
     let mut tally = Tally::default();
@@ -365,21 +506,21 @@ pub(crate) fn rebuild<B: Bits, K: Known>(
             st.create(t);
             match s {
                 sym::C => {
-                    check!(st.glue(c + 1, active));
+                    check!(st.glue_new(c, 1, active));
                     let id = check!(st.take_id());
                     check!(st.close_star(c, id));
                 }
-                sym::L => check!(st.glue(c + 1, active)),
-                sym::R => check!(st.glue(c + 2, active)),
+                sym::L => check!(st.glue_new(c, 1, active)),
+                sym::R => check!(st.glue_new(c, 2, active)),
                 sym::E => {
                     if t != last {
                         stack.push(active);
                     }
                 }
                 _ => {
-                    check!(st.glue(c + 1, active));
+                    check!(st.glue_new(c, 1, active));
                     if handle {
-                        let partner = st.o[c as usize + 2];
+                        let partner = st.opposite(c + 2);
                         st.merge_edge(c + 2, partner);
                     } else {
                         let len = k.hole(t);
@@ -396,7 +537,7 @@ pub(crate) fn rebuild<B: Bits, K: Known>(
                             let g = stack
                                 .pop()
                                 .ok_or_else(|| malformed(b.offset(), "S without a matching E"))?;
-                            check!(st.glue(c + 2, g));
+                            check!(st.glue_new(c, 2, g));
                         }
                     }
                 }
@@ -424,8 +565,43 @@ pub(crate) fn rebuild<B: Bits, K: Known>(
     if st.n != 0 {
         return Err(malformed(b.offset(), "fewer vertices than declared"));
     }
-    if st.v.iter().any(|t| t.contains(&NONE)) {
+    if st.v.as_flattened().contains(&NONE) {
         return Err(malformed(b.offset(), "corner without a vertex"));
     }
     Ok((st.v, tally))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::FORCE_WIDE;
+    use crate::edgebreaker::{decode, encode, Limits};
+    use crate::generate::{self, Rng};
+    use crate::CornerTable;
+
+    /// Both chain-entry widths give the same bytes and the same triangles, on meshes with
+    /// handles, holes, several components and defects.
+    #[test]
+    fn chain_words_agree() {
+        let mut rng = Rng::new(11);
+        let mut mesh = generate::irregular_torus(3000, 5);
+        generate::append(&mut mesh, &generate::torus(5, 7));
+        for _ in 0..3 {
+            let t = rng.below(mesh.triangles.len() as u32) as usize;
+            if let Some(u) = generate::far_triangle(&mesh, t, &mut rng) {
+                generate::add_handle(&mut mesh, t, u);
+            }
+        }
+        generate::punch_holes(&mut mesh, 6, &mut rng);
+        generate::add_defects(&mut mesh, 4, &mut rng);
+        let table = CornerTable::from_mesh(&mesh).unwrap();
+        let narrow = encode(&table).unwrap();
+        assert!(narrow.stats.handle_s > 0 && narrow.stats.boundary_s > 0);
+        let narrow_dec = decode(&narrow.bytes, &Limits::default()).unwrap();
+        FORCE_WIDE.with(|f| f.set(true));
+        let wide = encode(&table).unwrap();
+        let wide_dec = decode(&narrow.bytes, &Limits::default()).unwrap();
+        FORCE_WIDE.with(|f| f.set(false));
+        assert_eq!(narrow.bytes, wide.bytes);
+        assert_eq!(narrow_dec, wide_dec);
+    }
 }
