@@ -7,6 +7,34 @@
 //! elevation around an up axis, fitted to the projected mesh. Work and memory are bounded by
 //! the image size ([`MAX_SAMPLES`]) and the triangle count; positions that are not finite are
 //! skipped, so any mesh the LR accepts renders.
+//!
+//! ```
+//! use lrmesh::io::{read_mesh, ReadOptions};
+//! use lrmesh::lr::{Lr, LrOptions};
+//! use lrmesh::render::{render, ColorMode, RenderOptions};
+//! use lrmesh::{CornerOps, CornerTable, Vertex};
+//!
+//! # fn main() -> Result<(), lrmesh::Error> {
+//! let path = concat!(env!("CARGO_MANIFEST_DIR"), "/corpus/meshes/bunny_small.obj");
+//! let mesh = read_mesh(path.as_ref(), &ReadOptions::default())?.mesh;
+//! let lr = Lr::build(&CornerTable::from_mesh(&mesh)?, &LrOptions::default())?;
+//! // Positions by LR vertex.
+//! let positions: Vec<[f32; 3]> = (0..lr.vertex_id_bound())
+//!     .map(|v| mesh.positions[lr.input_vertex(Vertex(v)) as usize])
+//!     .collect();
+//! let options = RenderOptions {
+//!     width: 200,
+//!     height: 150,
+//!     mode: ColorMode::Classes,
+//!     ..Default::default()
+//! };
+//! let image = render(lr.tables(), &positions, &options)?;
+//! let mut png = Vec::new();
+//! image.write_png(&mut png).expect("writing to memory");
+//! assert_eq!(&png[1..4], b"PNG");
+//! # Ok(())
+//! # }
+//! ```
 
 use std::io::Write;
 
