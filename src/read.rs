@@ -11,7 +11,7 @@ use crate::corner_table::NONE;
 use crate::error::{Error, FormatError, Result};
 use crate::format::{self, geometry, kind, Tag, ENTRY_LEN, FLAG_REQUIRED, HEADER_LEN};
 use crate::ids::{Corner, Vertex};
-use crate::lr::{LeWords, LrTables, Words, IRREGULAR, NULL, VALUE, WART};
+use crate::lr::{LeWords, LrLayout, LrTables, Words, IRREGULAR, NULL, VALUE, WART};
 use crate::ops::CornerOps;
 use crate::strips::CtsTables;
 use crate::write::Metadata;

@@ -12,7 +12,7 @@ use crate::edgebreaker;
 use crate::error::{Error, Result};
 use crate::format::{self, geometry, kind, Tag, ENTRY_LEN, FLAG_REQUIRED, HEADER_LEN};
 use crate::ids::{Triangle, Vertex};
-use crate::lr::{Lr, LrOptions};
+use crate::lr::{Lr, LrLayout, LrOptions};
 use crate::ops::CornerOps;
 use crate::strips::{Cts, StripOptions};
 use crate::Mesh;

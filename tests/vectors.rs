@@ -8,6 +8,7 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
+use lrmesh::lr::LrLayout;
 use lrmesh::io::{read_mesh, ReadOptions};
 use lrmesh::read::ConnectivityView;
 use lrmesh::read::{open, Limits};

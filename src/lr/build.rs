@@ -1,7 +1,7 @@
 //! Construction of the LR from a corner table: closing boundaries with dummy vertices,
 //! RING-EXPANDER per component, triangle classes, warts, and irregular records.
 
-use super::tables::{ring_bits, LrTables, LEFT, NULL, RIGHT, VALUE, WART};
+use super::tables::{ring_bits, LrLayout, LrTables, LEFT, NULL, RIGHT, VALUE, WART};
 use super::{Lr, LrCounts, LrOptions};
 use crate::corner_table::{CornerTable, NONE};
 use crate::error::{Error, Result};
@@ -127,6 +127,46 @@ fn ring_expander(mesh: &Closed, s: u32, vm: &mut [bool], tm: &mut [bool]) {
     }
 }
 
+/// HYBRID-RING-EXPANDER (section 6.1) with period `period`: the invasion proceeds depth
+/// first from a double-ended queue of candidate corners, but after every `period`-th invaded
+/// triangle it resumes from the oldest candidate (breadth first), which bounds the length of
+/// the corridors and so the ring offsets `v.l - v` and `v.r - v`. `period = 1` is breadth
+/// first. Dummy vertices must already be marked visited.
+fn hybrid_ring_expander(
+    mesh: &Closed,
+    s: u32,
+    period: u32,
+    vm: &mut [bool],
+    tm: &mut [bool],
+    deque: &mut std::collections::VecDeque<u32>,
+) {
+    let v = &mesh.v;
+    vm[v[next3(s) as usize] as usize] = true;
+    vm[v[prev3(s) as usize] as usize] = true;
+    deque.clear();
+    let mut invaded = 0u32;
+    let mut c = s;
+    loop {
+        if !vm[v[c as usize] as usize] {
+            vm[v[c as usize] as usize] = true;
+            tm[c as usize / 3] = true;
+            // c.l and c.r: the corners facing the two edges the invasion exposed.
+            deque.push_back(mesh.o[next3(c) as usize]);
+            deque.push_back(mesh.o[prev3(c) as usize]);
+            invaded = (invaded + 1) % period;
+        }
+        let candidate = if invaded == 0 {
+            deque.pop_front()
+        } else {
+            deque.pop_back()
+        };
+        match candidate {
+            Some(next) => c = next,
+            None => break,
+        }
+    }
+}
+
 /// Per-component work lists of the closed mesh.
 struct Component {
     /// Real and dummy triangles.
@@ -227,7 +267,21 @@ impl Lr {
     /// [`Error::InvalidMesh`] when the mesh exceeds the id space (`2^30 - 2` vertices, corner
     /// ids below `2^32`).
     pub fn build(ct: &CornerTable, options: &LrOptions) -> Result<Lr> {
+        Lr::build_with_period(ct, options, 0)
+    }
+
+    /// Builds the LR with HYBRID-RING-EXPANDER of period `period` (section 6.1), or with
+    /// RING-EXPANDER (depth first) for `period = 0`.
+    pub fn build_with_period(ct: &CornerTable, options: &LrOptions, period: u32) -> Result<Lr> {
         let mesh = Closed::new(ct)?;
+        let mut deque = std::collections::VecDeque::new();
+        let mut expand = |s: u32, vm: &mut [bool], tm: &mut [bool]| {
+            if period == 0 {
+                ring_expander(&mesh, s, vm, tm)
+            } else {
+                hybrid_ring_expander(&mesh, s, period, vm, tm, &mut deque)
+            }
+        };
         let real_vertices = mesh.real_vertices;
         if real_vertices >= NULL {
             return Err(Error::InvalidMesh(
@@ -253,7 +307,7 @@ impl Lr {
                 let t = comp.real_triangles[rng.below(comp.real_triangles.len() as u32) as usize];
                 let s = 3 * t + rng.below(3);
                 reset(&comp, &mut vm, &mut tm);
-                ring_expander(&mesh, s, &mut vm, &mut tm);
+                expand(s, &mut vm, &mut tm);
                 let isolated = comp.vertices.iter().filter(|&&x| !vm[x as usize]).count();
                 let t0 = t0_after_warts(&mesh, &comp, &tm);
                 if best.is_none_or(|(b, _)| (isolated, t0) < b) {
@@ -262,7 +316,7 @@ impl Lr {
             }
             let (_, s) = best.expect("at least one try");
             reset(&comp, &mut vm, &mut tm);
-            ring_expander(&mesh, s, &mut vm, &mut tm);
+            expand(s, &mut vm, &mut tm);
             // A corner of an invaded triangle facing a non-invaded one starts the walk.
             let start = comp
                 .triangles

@@ -40,10 +40,12 @@
 //! The operators are written once, in [`LrTables`], for any storage of the tables.
 
 mod build;
+pub mod compact;
 mod tables;
 
+pub use compact::{CompactLr, CompactOptions, CompactStats, CompactTables, LeUnits, Units};
 pub(crate) use tables::ring_bits;
-pub use tables::{LeWords, LrTables, Words, IRREGULAR, NULL, VALUE, WART};
+pub use tables::{LeWords, LrLayout, LrTables, Words, IRREGULAR, NULL, VALUE, WART};
 
 use crate::corner_table::NONE;
 use crate::ids::{Corner, Triangle, Vertex};

@@ -97,21 +97,6 @@ pub(crate) fn ring_bits(starts: &[u32]) -> (Vec<u32>, Vec<u32>) {
 }
 
 impl<W: Words> LrTables<W> {
-    /// Number of ring vertices `m_r`.
-    pub fn ring_vertices(&self) -> u32 {
-        self.m_r
-    }
-
-    /// Number of rings.
-    pub fn ring_count(&self) -> usize {
-        self.ring_starts.count().saturating_sub(1)
-    }
-
-    /// Number of T0 triangles in VO.
-    pub fn t0_count(&self) -> u32 {
-        (self.vo_v.count() / 3) as u32
-    }
-
     /// Number of VO* records.
     pub fn record_count(&self) -> u32 {
         (self.vo_star.count() / 3) as u32
@@ -127,52 +112,42 @@ impl<W: Words> LrTables<W> {
     }
 
     #[inline(always)]
-    fn is_last(&self, v: u32) -> bool {
-        self.ring_last.at(v as usize / 32) >> (v % 32) & 1 != 0
-    }
-
-    /// Index of the ring that holds `v`: the number of ring ends before `v`.
-    #[inline(always)]
-    fn ring_of(&self, v: u32) -> usize {
-        let word = self.ring_last.at(v as usize / 32) & ((1u32 << (v % 32)) - 1);
-        (self.ring_rank.at(v as usize / 32) + word.count_ones()) as usize
-    }
-
-    /// `v.n`: the next vertex along `v`'s ring.
-    #[inline(always)]
-    pub fn ring_next(&self, v: u32) -> u32 {
-        if self.ring_starts.count() == 2 {
-            // One ring, the common case: no bit vector to consult.
-            return if v + 1 == self.m_r { 0 } else { v + 1 };
-        }
-        if self.is_last(v) {
-            self.ring_starts.at(self.ring_of(v))
-        } else {
-            v + 1
-        }
-    }
-
-    /// `v.p`: the previous vertex along `v`'s ring.
-    #[inline(always)]
-    pub fn ring_prev(&self, v: u32) -> u32 {
-        if self.ring_starts.count() == 2 {
-            return if v == 0 { self.m_r - 1 } else { v - 1 };
-        }
-        if v == 0 || self.is_last(v - 1) {
-            self.ring_starts.at(self.ring_of(v) + 1) - 1
-        } else {
-            v - 1
-        }
-    }
-
-    #[inline(always)]
     pub(crate) fn entry(&self, v: u32, side: usize) -> u32 {
         self.lr.at(2 * v as usize + side)
     }
+}
 
-    /// The tip vertex of slot `(v, side)` (`NULL` when that right triangle does not exist).
+impl<W: Words> LrLayout for LrTables<W> {
     #[inline(always)]
-    pub(crate) fn tip(&self, v: u32, side: usize) -> u32 {
+    fn ring_vertices(&self) -> u32 {
+        self.m_r
+    }
+    #[inline(always)]
+    fn vertex_count(&self) -> u32 {
+        self.m
+    }
+    #[inline(always)]
+    fn t0_count(&self) -> u32 {
+        (self.vo_v.count() / 3) as u32
+    }
+    #[inline(always)]
+    fn ring_count(&self) -> usize {
+        self.ring_starts.count().saturating_sub(1)
+    }
+    #[inline(always)]
+    fn ring_start(&self, ring: usize) -> u32 {
+        self.ring_starts.at(ring)
+    }
+    #[inline(always)]
+    fn ring_last_word(&self, i: usize) -> u32 {
+        self.ring_last.at(i)
+    }
+    #[inline(always)]
+    fn ring_rank_word(&self, i: usize) -> u32 {
+        self.ring_rank.at(i)
+    }
+    #[inline(always)]
+    fn tip(&self, v: u32, side: usize) -> u32 {
         let e = self.entry(v, side);
         if e & IRREGULAR != 0 {
             self.vo_star.at(3 * (e & VALUE) as usize)
@@ -180,15 +155,127 @@ impl<W: Words> LrTables<W> {
             e & VALUE
         }
     }
-
     #[inline(always)]
-    pub(crate) fn wart(&self, v: u32, side: usize) -> bool {
+    fn wart(&self, v: u32, side: usize) -> bool {
         self.entry(v, side) & WART != 0
+    }
+    #[inline(always)]
+    fn irregular(&self, v: u32, side: usize) -> bool {
+        self.entry(v, side) & IRREGULAR != 0
+    }
+    #[inline(always)]
+    fn stored_opposite(&self, v: u32, side: usize, second: usize) -> Option<u32> {
+        let e = self.entry(v, side);
+        (e & IRREGULAR != 0).then(|| self.vo_star.at(3 * (e & VALUE) as usize + 1 + second))
+    }
+    #[inline(always)]
+    fn t0_vertex(&self, k: u32) -> u32 {
+        self.vo_v.at(k as usize)
+    }
+    #[inline(always)]
+    fn t0_opposite(&self, k: u32) -> u32 {
+        self.vo_o.at(k as usize)
+    }
+    #[inline(always)]
+    fn isolated_corner(&self, i: u32) -> u32 {
+        self.c.at(i as usize)
+    }
+}
+
+/// What an encoding of the LR tables answers: the rings, what each slot holds, the T0 rows
+/// and C. The operators are written once, as provided methods on top of these, so that the
+/// standard tables ([`LrTables`]) and the bit-efficient ones
+/// ([`CompactTables`](super::CompactTables)) share them; every layout implements
+/// [`CornerOps`] through them.
+///
+/// Slot `(v, side)` is the left (`side = 0`) or right (`side = 1`) triangle of ring edge
+/// `(v, v.n)`; `spec/OPERATORS.md` defines the terms.
+pub trait LrLayout {
+    /// Number of ring vertices `m_r`.
+    fn ring_vertices(&self) -> u32;
+    /// Number of vertices `m`, isolated ones included.
+    fn vertex_count(&self) -> u32;
+    /// Number of T0 triangles stored as rows.
+    fn t0_count(&self) -> u32;
+    /// Number of rings.
+    fn ring_count(&self) -> usize;
+    /// First vertex of ring `ring`; `ring_start(ring_count())` is `m_r`.
+    fn ring_start(&self, ring: usize) -> u32;
+    /// Word `i` of the ring-end bit vector (read only with several rings).
+    fn ring_last_word(&self, i: usize) -> u32;
+    /// Set bits of the ring-end bit vector before word `i` (read only with several rings).
+    fn ring_rank_word(&self, i: usize) -> u32;
+    /// The tip vertex of slot `(v, side)`, or [`NULL`] for a right triangle that does not
+    /// exist.
+    fn tip(&self, v: u32, side: usize) -> u32;
+    /// Whether slot `(v, side)` holds a T0 in a wart's redundant slot (its far vertex is
+    /// `v.n.n`).
+    fn wart(&self, v: u32, side: usize) -> bool;
+    /// Whether slot `(v, side)` stores the opposite of a transversal corner (which also
+    /// makes it canonical, whatever its tip).
+    fn irregular(&self, v: u32, side: usize) -> bool;
+    /// The stored opposite, if any, of a transversal corner of slot `(v, side)`: of its
+    /// first (`8v` or `8v+4`) for `second = 0`, of its second (`8v+2` or `8v+6`) for
+    /// `second = 1`.
+    fn stored_opposite(&self, v: u32, side: usize, second: usize) -> Option<u32>;
+    /// Vertex of T0 corner row `k` (`3j + i` for corner `i` of T0 triangle `j`).
+    fn t0_vertex(&self, k: u32) -> u32;
+    /// Opposite of T0 corner row `k`, `NONE` on a boundary.
+    fn t0_opposite(&self, k: u32) -> u32;
+    /// The corner of isolated vertex `m_r + i`, `NONE` for a vertex without triangles.
+    fn isolated_corner(&self, i: u32) -> u32;
+
+    /// Whether `v` ends its ring.
+    #[inline(always)]
+    fn is_last(&self, v: u32) -> bool {
+        self.ring_last_word(v as usize / 32) >> (v % 32) & 1 != 0
+    }
+
+    /// Index of the ring that holds `v`: the number of ring ends before `v`.
+    #[inline(always)]
+    fn ring_of(&self, v: u32) -> usize {
+        let word = self.ring_last_word(v as usize / 32) & ((1u32 << (v % 32)) - 1);
+        (self.ring_rank_word(v as usize / 32) + word.count_ones()) as usize
+    }
+
+    /// `v.n`: the next vertex along `v`'s ring.
+    #[inline(always)]
+    fn ring_next(&self, v: u32) -> u32 {
+        if self.ring_count() == 1 {
+            // One ring, the common case: no bit vector to consult.
+            return if v + 1 == self.ring_vertices() {
+                0
+            } else {
+                v + 1
+            };
+        }
+        if self.is_last(v) {
+            self.ring_start(self.ring_of(v))
+        } else {
+            v + 1
+        }
+    }
+
+    /// `v.p`: the previous vertex along `v`'s ring.
+    #[inline(always)]
+    fn ring_prev(&self, v: u32) -> u32 {
+        if self.ring_count() == 1 {
+            return if v == 0 {
+                self.ring_vertices() - 1
+            } else {
+                v - 1
+            };
+        }
+        if v == 0 || self.is_last(v - 1) {
+            self.ring_start(self.ring_of(v) + 1) - 1
+        } else {
+            v - 1
+        }
     }
 
     /// The slot's third vertex: `v.n`, or `v.n.n` in a wart slot (the skipped ring).
     #[inline(always)]
-    pub(crate) fn far(&self, v: u32, side: usize) -> u32 {
+    fn far(&self, v: u32, side: usize) -> u32 {
         let n = self.ring_next(v);
         if self.wart(v, side) {
             self.ring_next(n)
@@ -199,15 +286,16 @@ impl<W: Words> LrTables<W> {
 
     /// Whether slot `(v, side)` is the redundant copy of a T2 (its first ring edge).
     #[inline(always)]
-    pub(crate) fn redundant(&self, v: u32, side: usize) -> bool {
-        let e = self.entry(v, side);
-        e & (IRREGULAR | WART) == 0 && e == self.ring_next(self.ring_next(v))
+    fn redundant(&self, v: u32, side: usize) -> bool {
+        !self.irregular(v, side)
+            && !self.wart(v, side)
+            && self.tip(v, side) == self.ring_next(self.ring_next(v))
     }
 
     /// Maps a corner of a redundant T2 copy to the same corner of the canonical slot.
     #[inline(always)]
-    pub(crate) fn canonical(&self, c: u32) -> u32 {
-        if c >= 8 * self.m_r {
+    fn canonical(&self, c: u32) -> u32 {
+        if c >= 8 * self.ring_vertices() {
             return c;
         }
         let (v, i) = (c >> 3, c & 7);
@@ -246,10 +334,11 @@ impl<W: Words> LrTables<W> {
     /// triangle): the corner facing it, or `NONE`.
     #[inline(always)]
     fn find_left(&self, x: u32, y: u32) -> u32 {
-        if y < self.m_r && self.tip(y, LEFT) == x {
+        let m_r = self.ring_vertices();
+        if y < m_r && self.tip(y, LEFT) == x {
             return self.canonical(8 * y + 2);
         }
-        if x < self.m_r {
+        if x < m_r {
             let p = self.ring_prev(x);
             if !self.wart(p, LEFT) && self.tip(p, LEFT) == y {
                 return self.canonical(8 * p);
@@ -265,10 +354,11 @@ impl<W: Words> LrTables<W> {
     /// A right triangle holding half-edge `y -> x`: the corner facing it, or `NONE`.
     #[inline(always)]
     fn find_right(&self, x: u32, y: u32) -> u32 {
-        if x < self.m_r && self.tip(x, RIGHT) == y {
+        let m_r = self.ring_vertices();
+        if x < m_r && self.tip(x, RIGHT) == y {
             return self.canonical(8 * x + 4);
         }
-        if y < self.m_r {
+        if y < m_r {
             let p = self.ring_prev(y);
             if !self.wart(p, RIGHT) && self.tip(p, RIGHT) == x {
                 return self.canonical(8 * p + 6);
@@ -283,14 +373,14 @@ impl<W: Words> LrTables<W> {
 
     /// `c.o` for a canonical corner, as a raw id (`NONE` on a boundary).
     #[inline(always)]
-    pub(crate) fn opposite_raw(&self, c: u32) -> u32 {
-        if c >= 8 * self.m_r {
-            return self.vo_o.at((c - c / 4 - 6 * self.m_r) as usize);
+    fn opposite_raw(&self, c: u32) -> u32 {
+        let m_r = self.ring_vertices();
+        if c >= 8 * m_r {
+            return self.t0_opposite(c - c / 4 - 6 * m_r);
         }
         let (v, i) = (c >> 3, c & 7);
         let side = (i >> 2) as usize;
-        let e = self.entry(v, side);
-        let wart = e & WART != 0;
+        let wart = self.wart(v, side);
         if i == 1 || i == 5 {
             // The corner facing the ring edge (or, in a wart slot, the wart's edge).
             return if wart {
@@ -299,12 +389,19 @@ impl<W: Words> LrTables<W> {
                 self.across(v, side)
             };
         }
-        if e & IRREGULAR != 0 {
-            let record = 3 * (e & VALUE) as usize;
-            let second = (i == 2 || i == 6) as usize;
-            return self.vo_star.at(record + 1 + second);
+        if let Some(o) = self.stored_opposite(v, side, (i == 2 || i == 6) as usize) {
+            return o;
         }
-        let tip = e & VALUE;
+        self.inferred_opposite(v, i)
+    }
+
+    /// `c.o` of transversal corner `8v + i` (`i` in 0, 2, 4, 6) by the ring rules alone
+    /// (OPERATORS.md §4), without the slot's stored opposites.
+    #[inline(always)]
+    fn inferred_opposite(&self, v: u32, i: u32) -> u32 {
+        let side = (i >> 2) as usize;
+        let wart = self.wart(v, side);
+        let tip = self.tip(v, side);
         let p = self.ring_prev(v);
         // A canonical T2 (v.p, v, v.n): tip v.p; one of its corners faces ring edge (v.p, v).
         let t2 = !wart && tip == p;
@@ -323,33 +420,34 @@ impl<W: Words> LrTables<W> {
     /// Whether slot `(v, side)` holds a canonical triangle: it exists (a right slot may be a
     /// boundary's `NULL`) and is not a redundant T2 copy.
     #[inline(always)]
-    pub(crate) fn slot_is_triangle(&self, v: u32, side: usize) -> bool {
+    fn slot_is_triangle(&self, v: u32, side: usize) -> bool {
         self.tip(v, side) != NULL && !self.redundant(v, side)
     }
 
     /// Whether `t` is a canonical triangle id (not a redundant copy, unused or a missing right
     /// triangle).
-    pub fn is_triangle(&self, t: Triangle) -> bool {
-        let t = t.0;
-        if t >= 2 * self.m_r {
-            return t - 2 * self.m_r < self.t0_count();
+    fn is_triangle(&self, t: Triangle) -> bool {
+        let (t, m_r) = (t.0, self.ring_vertices());
+        if t >= 2 * m_r {
+            return t - 2 * m_r < self.t0_count();
         }
         self.slot_is_triangle(t / 2, (t % 2) as usize)
     }
 
     /// Whether `c` is a corner of a canonical triangle.
-    pub fn is_corner(&self, c: Corner) -> bool {
+    fn is_corner(&self, c: Corner) -> bool {
         c.0 & 3 != 3 && self.is_triangle(Triangle(c.0 >> 2))
     }
 }
 
-impl<W: Words> CornerOps for LrTables<W> {
+/// The corner operators of every LR layout.
+impl<T: LrLayout> CornerOps for T {
     fn vertex_id_bound(&self) -> u32 {
-        self.m
+        self.vertex_count()
     }
 
     fn triangle_id_bound(&self) -> u32 {
-        2 * self.m_r + self.t0_count()
+        2 * self.ring_vertices() + self.t0_count()
     }
 
     fn triangles(&self) -> impl Iterator<Item = Triangle> + '_ {
@@ -359,14 +457,14 @@ impl<W: Words> CornerOps for LrTables<W> {
     }
 
     fn vertices(&self) -> impl Iterator<Item = Vertex> + '_ {
-        (0..self.m).map(Vertex)
+        (0..self.vertex_count()).map(Vertex)
     }
 
     #[inline(always)]
     fn vertex(&self, c: Corner) -> Vertex {
-        let c = c.0;
-        if c >= 8 * self.m_r {
-            return Vertex(self.vo_v.at((c - c / 4 - 6 * self.m_r) as usize));
+        let (c, m_r) = (c.0, self.ring_vertices());
+        if c >= 8 * m_r {
+            return Vertex(self.t0_vertex(c - c / 4 - 6 * m_r));
         }
         let v = c >> 3;
         Vertex(match c & 7 {
@@ -400,8 +498,9 @@ impl<W: Words> CornerOps for LrTables<W> {
 
     #[inline(always)]
     fn vertex_corner(&self, v: Vertex) -> Option<Corner> {
-        if v.0 >= self.m_r {
-            return Corner::from_stored(self.c.at((v.0 - self.m_r) as usize));
+        let m_r = self.ring_vertices();
+        if v.0 >= m_r {
+            return Corner::from_stored(self.isolated_corner(v.0 - m_r));
         }
         Some(Corner(self.canonical(8 * v.0)))
     }

@@ -1,0 +1,169 @@
+//! The bit-efficient LR against the corner table (every canonical corner) and against the
+//! standard LR it encodes (every slot), on real and generated meshes.
+
+mod common;
+
+use common::{check_against_table, corpus_dir, shared_dir};
+use lrmesh::generate::{self, Rng};
+use lrmesh::io::{read_mesh, ReadOptions};
+use lrmesh::lr::{CompactLr, CompactOptions, LrLayout, LrOptions};
+use lrmesh::{CornerOps, CornerTable, Mesh};
+use proptest::prelude::*;
+
+fn check_compact(mesh: &Mesh, options: &CompactOptions) -> CompactLr {
+    let table = CornerTable::from_mesh(mesh).unwrap();
+    let lr = CompactLr::build(&table, options).unwrap();
+    let tables = lr.tables();
+    let key = |c: lrmesh::Corner| {
+        (
+            lr.input_triangle(tables.triangle(c)),
+            lr.input_vertex(tables.vertex(c)),
+        )
+    };
+    let position = |v: lrmesh::Vertex| mesh.positions[lr.input_vertex(v) as usize];
+    check_against_table(tables, key, position, &table, mesh);
+    let back = lr.input_triangles();
+    assert_eq!(back.len(), mesh.triangles.len());
+    for (k, (got, want)) in back.iter().zip(&mesh.triangles).enumerate() {
+        let rotations = [
+            *want,
+            [want[1], want[2], want[0]],
+            [want[2], want[0], want[1]],
+        ];
+        assert!(
+            rotations.contains(got),
+            "input triangle {k}: {got:?} != {want:?}"
+        );
+    }
+    let stats = lr.stats();
+    assert_eq!(stats.bytes, lr.stored_bytes());
+    lr
+}
+
+fn options(periods: &[u32]) -> CompactOptions {
+    CompactOptions {
+        lr: LrOptions::default(),
+        periods: periods.to_vec(),
+    }
+}
+
+#[test]
+fn torus_and_small_cases() {
+    check_compact(&generate::torus(6, 9), &CompactOptions::default());
+    check_compact(
+        &Mesh::new(vec![[0.0; 3]; 3], vec![[0, 1, 2]]),
+        &CompactOptions::default(),
+    );
+    check_compact(
+        &Mesh::new(vec![[0.0; 3]; 3], vec![[0, 1, 2], [0, 2, 1]]),
+        &CompactOptions::default(),
+    );
+    check_compact(&Mesh::new(vec![[0.0; 3]; 4], vec![]), &options(&[0]));
+}
+
+/// A large irregular mesh built depth first has offsets beyond 15 bits, T0 rows that
+/// overflow, and many blocks: every long path of the layout is exercised.
+#[test]
+fn long_references_and_overflow_rows() {
+    let mut rng = Rng::new(7);
+    let mut mesh = generate::irregular_torus(120_000, 5);
+    generate::punch_holes(&mut mesh, 30, &mut rng);
+    let lr = check_compact(&mesh, &options(&[0]));
+    let t = lr.tables();
+    let stats = lr.stats();
+    eprintln!("{stats:?}");
+    let long_tips = (0..t.ring_vertices())
+        .filter(|&v| {
+            [0, 1].iter().any(|&side| {
+                let tip = t.tip(v, side);
+                tip != lrmesh::lr::NULL && (tip as i64 - v as i64).abs() > 0x3FFF
+            })
+        })
+        .count();
+    assert!(long_tips > 0, "no long tip exercised");
+    assert!(t.overflow_rows() > 0, "no T0 overflow row exercised");
+    assert!((0..t.ring_vertices()).any(|v| t.is_extended(v)));
+    assert!(t.ring_vertices() > 4 << lrmesh::lr::compact::BLOCK_SHIFT);
+    // The hybrid expander keeps offsets short on the same mesh.
+    let hybrid = check_compact(&mesh, &options(&[64]));
+    eprintln!("{:?}", hybrid.stats());
+    assert!(hybrid.stats().bpt < stats.bpt);
+}
+
+/// Every slot of the compact tables holds what the standard tables of the same ring hold.
+#[test]
+fn same_slots_as_standard_lr() {
+    let mesh = generate::irregular_torus(5_000, 11);
+    let table = CornerTable::from_mesh(&mesh).unwrap();
+    for period in [0, 1, 8, 100] {
+        let compact = CompactLr::build(&table, &options(&[period])).unwrap();
+        assert_eq!(compact.period(), period);
+        let standard = lrmesh::lr::Lr::build_with_period(&table, &LrOptions::default(), period);
+        let (c, s) = (compact.tables(), standard.unwrap());
+        let s = s.tables();
+        assert_eq!(c.ring_vertices(), s.ring_vertices());
+        for v in 0..c.ring_vertices() {
+            for side in [0, 1] {
+                assert_eq!(c.tip(v, side), s.tip(v, side), "tip {v} {side}");
+                assert_eq!(c.wart(v, side), s.wart(v, side), "wart {v} {side}");
+                assert_eq!(c.irregular(v, side), s.irregular(v, side));
+            }
+        }
+    }
+}
+
+#[test]
+fn corpus_and_shared_meshes() {
+    let mut dirs = vec![corpus_dir()];
+    dirs.extend(shared_dir());
+    for dir in dirs {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if lrmesh::io::MeshFormat::from_path(&path).is_err() {
+                continue;
+            }
+            let mesh = read_mesh(&path, &ReadOptions::default()).unwrap().mesh;
+            let lr = check_compact(&mesh, &CompactOptions::default());
+            let s = lr.stats();
+            eprintln!(
+                "{:30} k {:4} T0 {:5.2}% T1i {:5.2}% T2i {:5.2}% ext {:5.2}% bpt {:6.2}",
+                path.file_name().unwrap().to_string_lossy(),
+                s.k,
+                s.t0_pct,
+                s.t1i_pct,
+                s.t2i_pct,
+                s.tl_pct,
+                s.bpt
+            );
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    #[test]
+    fn soups(vertices in 1u32..25, triangles in 0u32..60, seed in any::<u64>(), period in 0u32..4) {
+        let mesh = generate::soup(vertices, triangles, &mut Rng::new(seed));
+        check_compact(&mesh, &CompactOptions { lr: LrOptions { tries: 2, seed }, periods: vec![period] });
+    }
+
+    #[test]
+    fn tori_with_everything(around in 3u32..9, along in 3u32..9, holes in 0usize..8,
+                            defects in 0usize..10, handles in 0usize..3, seed in any::<u64>(),
+                            period in 0u32..6) {
+        let mut rng = Rng::new(seed);
+        let mut mesh = generate::torus(around, along);
+        generate::flip_edges(&mut mesh, 20, &mut rng);
+        for _ in 0..handles {
+            let t = rng.below(mesh.triangles.len() as u32) as usize;
+            if let Some(u) = generate::far_triangle(&mesh, t, &mut rng) {
+                generate::add_handle(&mut mesh, t, u);
+            }
+        }
+        generate::append(&mut mesh, &generate::torus(3, 5));
+        generate::punch_holes(&mut mesh, holes, &mut rng);
+        generate::add_defects(&mut mesh, defects, &mut rng);
+        check_compact(&mesh, &CompactOptions { lr: LrOptions { tries: 2, seed }, periods: vec![period] });
+    }
+}
