@@ -1,8 +1,9 @@
 //! One-run comparison of the connectivity representations (`lrmesh bench`, and the `lr`
-//! bench): size, build and open times, and the loops of the LR paper's Fig. 10 (c.v and c.o
-//! over every corner, valence and normal of every vertex, contour walks) as ratios to the
-//! corner table, all timed in the same process with [`std::time::Instant`], each step the
-//! median of several runs.
+//! bench): corner table, standard LR (owned, and the zero-copy view of the `.lrm` bytes),
+//! compact (bit-efficient) LR, Edgebreaker and constrained strips. Size, build and open
+//! times, and the loops of the LR paper's Fig. 10 (c.v and c.o over every corner, valence and
+//! normal of every vertex, contour walks) as ratios to the corner table, all timed in the same
+//! process with [`std::time::Instant`], each step the median of several runs.
 //!
 //! The loops live here once, for this report and for the bench binaries.
 
@@ -13,7 +14,7 @@ use crate::corner_table::CornerTable;
 use crate::edgebreaker;
 use crate::error::Result;
 use crate::ids::{Triangle, Vertex};
-use crate::lr::{Lr, LrOptions};
+use crate::lr::{CompactLr, CompactOptions, Lr, LrOptions};
 use crate::mesh::Mesh;
 use crate::ops::{self, CornerOps, Plane};
 use crate::read;
@@ -195,8 +196,8 @@ impl LoopFigures {
 
 /// The comparison of [`run`]: one row per representation, the corner table first.
 ///
-/// Build times: the corner table from the mesh; owned LR, Edgebreaker and strips from the
-/// corner table; the LR view's is the whole container's encoding from the mesh
+/// Build times: the corner table from the mesh; owned LR, compact LR (every period of
+/// [`CompactOptions`], the smallest kept), Edgebreaker and strips from the corner table; the LR view's is the whole container's encoding from the mesh
 /// ([`write::encode`]). Open times: [`read::open`] (validation) for the LR view, decoding for
 /// Edgebreaker.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -312,7 +313,28 @@ pub fn run(
         ));
     }
 
-    // Compact LR (src/lr/compact*.rs): its row goes here, built like "LR (owned)" above.
+    progress("compact LR (bit-efficient)");
+    let compact_options = CompactOptions {
+        lr: options.lr,
+        ..CompactOptions::default()
+    };
+    let compact = CompactLr::build(&table, &compact_options)?;
+    let compact_build = median_time(runs, || CompactLr::build(&table, &compact_options));
+    let compact_positions: Vec<[f32; 3]> = (0..compact.tables().vertex_id_bound())
+        .map(|v| {
+            let input = compact.input_vertex(Vertex(v)) as usize;
+            mesh.positions.get(input).copied().unwrap_or([0.0; 3])
+        })
+        .collect();
+    let compact_loops = fig10_loops(compact.tables(), &compact_positions, runs);
+    rows.push(row(
+        "compact LR",
+        compact.stored_bytes(),
+        n,
+        Some(compact_build),
+        None,
+        Some((&compact_loops, &ct_loops)),
+    ));
 
     progress("Edgebreaker");
     let eb = edgebreaker::encode(&table)?;
@@ -405,8 +427,8 @@ impl std::fmt::Display for BenchReport {
         writeln!(f, ")")?;
         writeln!(
             f,
-            "build: corner table from the mesh; LR (owned), Edgebreaker, CTS from the corner \
-             table; LR (view) encodes the whole .lrm from the mesh. open: validation of the \
+            "build: corner table from the mesh; LR (owned), compact LR, Edgebreaker, CTS from \
+             the corner table; LR (view) encodes the whole .lrm from the mesh. open: validation of the \
              .lrm (LR view), decoding (Edgebreaker)"
         )
     }

@@ -304,8 +304,9 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
                 Lr::build(&table, &LrOptions { tries, seed })
             })?;
             let stats = LrStats::new(&lr, report.valence6_pct);
-            let edgebreaker = EdgebreakerStats::of(&table)?;
-            let strips = StripStats::of(&mesh)?;
+            let edgebreaker =
+                progress::step("encoding Edgebreaker", || EdgebreakerStats::of(&table))?;
+            let strips = progress::step("building strips", || StripStats::of(&mesh))?;
             if json {
                 let out = serde_json::json!({
                     "lr": stats,
@@ -389,8 +390,8 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
         Command::Decode { input, output } => {
             let bytes = map(&input)?;
             let view = read::open(&bytes, &Limits::default()).map_err(|e| e.with_file(&input))?;
-            let mesh = view.to_mesh();
-            io::write_mesh(&output, &mesh)?;
+            let mesh = progress::step("decoding", || view.to_mesh());
+            progress::step("writing", || io::write_mesh(&output, &mesh))?;
             eprintln!(
                 "wrote {}: {} vertices, {} triangles{}",
                 output.display(),
@@ -527,7 +528,7 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
             weld,
         } => {
             let mesh = load(&input, weld)?;
-            io::write_mesh(&output, &mesh)?;
+            progress::step("writing", || io::write_mesh(&output, &mesh))?;
             eprintln!(
                 "wrote {}: {} vertices, {} triangles",
                 output.display(),

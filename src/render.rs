@@ -40,8 +40,7 @@ use std::io::Write;
 
 use crate::error::{Error, Result};
 use crate::ids::{Triangle, Vertex};
-// The whole module: the LR's operator traits differ between storages and versions.
-use crate::lr::*;
+use crate::lr::{LrLayout, LrTables, TriangleClass, Words};
 use crate::ops::CornerOps;
 
 /// Most samples (pixels times supersamples) an image may have: 2^26, about 470 MB of buffers.

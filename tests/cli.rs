@@ -259,6 +259,7 @@ fn bench_json_has_one_row_per_representation() {
         "corner table",
         "LR (owned)",
         "LR (view)",
+        "compact LR",
         "Edgebreaker",
         "strips (CTS)",
     ] {
@@ -283,6 +284,7 @@ fn bench_json_has_one_row_per_representation() {
     assert!(row("Edgebreaker")["loops"].is_null());
     assert!(row("LR (view)")["open_ms"].as_f64().is_some());
     assert!(row("LR (owned)")["bytes"].as_f64() < row("corner table")["bytes"].as_f64());
+    assert!(row("compact LR")["bytes"].as_f64() < row("LR (owned)")["bytes"].as_f64());
 
     let text = lrmesh(&["bench", &corpus("tetrahedron.off"), "--runs", "1"]);
     assert!(text.status.success());
