@@ -66,25 +66,6 @@ impl Model {
     }
 
     #[inline(always)]
-    fn code_symbol<B: Bits>(&mut self, b: &mut B, s: u8, fans: usize) -> u8 {
-        let n = &mut self.nodes[fans * HIST + self.hist];
-        if b.bit(&mut n[0], (s != sym::C) as u32) == 0 {
-            return sym::C;
-        }
-        if b.bit(&mut n[1], (s != sym::R) as u32) == 0 {
-            return sym::R;
-        }
-        if b.bit(&mut n[2], (s != sym::S) as u32) == 0 {
-            return sym::S;
-        }
-        if b.bit(&mut n[3], (s != sym::L) as u32) == 0 {
-            sym::L
-        } else {
-            sym::E
-        }
-    }
-
-    #[inline(always)]
     fn push(&mut self, s: u8) {
         self.hist = if ORDER == 1 {
             s as usize // symbols are below 5
@@ -128,7 +109,8 @@ type Step<T = ()> = std::result::Result<T, &'static str>;
 
 /// A chain entry: the corner at the other end and the length, in one word. Most meshes use
 /// [`u32`] entries (corner ids below 2^28, lengths in the top 4 bits), larger ones [`u64`]:
-/// the decoder's memory is mostly fresh pages, so every byte per corner costs time.
+/// the decoder's memory is mostly fresh pages, so every byte per corner costs time. Corners
+/// of triangles not created yet read as other end 0, length 0.
 trait ChainWord: Copy + Default {
     /// Whether corner ids below `corners` fit.
     fn fits(corners: u64) -> bool;
@@ -175,6 +157,16 @@ impl ChainWord for u64 {
     }
 }
 
+/// `(c.n, c.p)`, with one division.
+#[inline(always)]
+fn next_prev(c: u32) -> (u32, u32) {
+    match c % 3 {
+        0 => (c + 1, c + 2),
+        1 => (c + 1, c - 1),
+        _ => (c - 2, c - 1),
+    }
+}
+
 impl<W: ChainWord> State<W> {
     /// `c.o`, or `NONE`.
     #[inline(always)]
@@ -199,16 +191,13 @@ impl<W: ChainWord> State<W> {
         Ok(())
     }
 
-    /// Glues the edges facing `a` and `b`, given with their `.p` and `.n` (which the callers
-    /// often know without a division).
+    /// Glues the edges facing `a` and `b`, of two different triangles, given with their `.p`
+    /// and `.n` (which the callers often know without a division).
     #[inline(always)]
     fn glue3(&mut self, (pa, a, na): (u32, u32, u32), (pb, b, nb): (u32, u32, u32)) -> Step {
         let len = self.d1.len();
         if a as usize >= len || b as usize >= len {
             return Err("gate out of range");
-        }
-        if a / 3 == b / 3 {
-            return Err("edge glued to its own triangle");
         }
         let (pai, pbi) = (pa as usize, pb as usize);
         if pai >= len || pbi >= len || self.d1[pai] != NONE || self.d1[pbi] != NONE {
@@ -223,11 +212,24 @@ impl<W: ChainWord> State<W> {
 
     #[inline(always)]
     fn glue(&mut self, a: u32, b: u32) -> Step {
+        if a / 3 == b / 3 {
+            return Err("edge glued to its own triangle");
+        }
         self.glue3((prev(a), a, next(a)), (prev(b), b, next(b)))
     }
 
+    /// Glues the edge facing `x.n` to the edge facing `y.p` (closing a fan from its D1 end
+    /// `x` to its D2 end `y`), given `x.p` and `y.n`.
+    #[inline(always)]
+    fn glue_fan(&mut self, (x, nx, px): (u32, u32, u32), (y, ny, py): (u32, u32, u32)) -> Step {
+        if x / 3 == y / 3 {
+            return Err("edge glued to its own triangle");
+        }
+        self.glue3((x, nx, px), (ny, py, y))
+    }
+
     /// Glues edge `k` (1: right, 2: left) of the new triangle whose tip is `c` to the gate
-    /// facing `g`, the tip of an earlier triangle.
+    /// facing `g`, the tip of an earlier triangle (so never of the same triangle).
     #[inline(always)]
     fn glue_new(&mut self, c: u32, k: u32, g: u32) -> Step {
         let a = if k == 1 {
@@ -349,33 +351,54 @@ impl<W: ChainWord> State<W> {
         }
     }
 
-    /// Closes the star of the vertex of `a`: numbers all its corners `id` and glues the one
-    /// free edge pair around it, if any.
+    /// Closes the star of the vertex of `a` (given with `a.n`): numbers all its corners `id`
+    /// and glues the one free edge pair around it, if any. The budget is charged once per
+    /// walk: each walk ends within `3 nt` steps (the D1 step is injective, so a walk either
+    /// stops or comes back to `a`; if the D1 walk stops, so does the D2 walk).
     #[inline(always)]
-    fn close_star(&mut self, a: u32, id: u32) -> Step {
-        self.assign(a, id)?;
+    fn close_star(&mut self, a: u32, na: u32, id: u32) -> Step {
+        self.set_vertex(a, id);
+        let mut steps = 1u32;
+        // `NONE` is past the end of `d1`, so one bounds check tells both.
         let mut x = a;
-        loop {
-            let d = self.step(x);
-            if d == NONE {
-                break;
+        let mut d = self.step(a);
+        while let Some(&dd) = self.d1.get(d as usize) {
+            if d == a {
+                return self.charge(steps);
             }
             x = d;
-            if x == a {
-                return Ok(());
-            }
-            self.assign(x, id)?;
+            self.set_vertex(x, id);
+            steps += 1;
+            d = dd;
         }
-        let mut y = a;
+        let (mut y, mut ny) = (a, na);
         loop {
-            let d = self.step(next(y));
+            let d = self.step(ny);
             if d == NONE {
                 break;
             }
-            y = next(d);
-            self.assign(y, id)?;
+            (y, ny) = (next(d), next(next(d)));
+            self.set_vertex(y, id);
+            steps += 1;
         }
-        self.glue(next(x), prev(y))
+        self.charge(steps)?;
+        let (nx, px) = next_prev(x);
+        self.glue_fan((x, nx, px), (y, ny, prev(y)))
+    }
+
+    /// Stores the vertex of corner `c`, without charging the budget.
+    #[inline(always)]
+    fn set_vertex(&mut self, c: u32, id: u32) {
+        if let Some(v) = self.v.as_flattened_mut().get_mut(c as usize) {
+            *v = id;
+        }
+    }
+
+    /// Charges `n` corner assignments to the budget.
+    #[inline(always)]
+    fn charge(&mut self, n: u32) -> Step {
+        self.budget = self.budget.checked_sub(n).ok_or("corner reached twice")?;
+        Ok(())
     }
 
     /// A boundary `S` with tip corner `c` reaching a hole of `len` vertices: walks backwards
@@ -439,6 +462,39 @@ pub(crate) fn rebuild<B: Bits, K: Known>(
     }
 }
 
+/// A non-handle `S` at triangle `t` (tip `3t`) glued to `active`: its hole length, then
+/// either the hole (a boundary `S`) or the gate the matching `E` pushed.
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn split<B: Bits, K: Known, W: ChainWord>(
+    b: &mut B,
+    k: &mut K,
+    st: &mut State<W>,
+    model: &mut Model,
+    stack: &mut Vec<u32>,
+    t: u32,
+    active: u32,
+    tally: &mut Tally,
+) -> Result<()> {
+    let c = 3 * t;
+    let at = |b: &B, m: &str| malformed(b.offset(), m.to_string());
+    st.glue_new(c, 1, active).map_err(|m| at(b, m))?;
+    let len = k.hole(t);
+    let len = model
+        .code_hole(b, len)
+        .ok_or_else(|| at(b, "hole length too long"))?;
+    if len != 0 {
+        if len < 2 {
+            return Err(at(b, "hole of fewer than 2 vertices"));
+        }
+        tally.holes += 1;
+        st.hole(c, len).map_err(|m| at(b, m))
+    } else {
+        let g = stack.pop().ok_or_else(|| at(b, "S without a matching E"))?;
+        st.glue_new(c, 2, g).map_err(|m| at(b, m))
+    }
+}
+
 #[cfg(test)]
 thread_local! {
     /// Makes [`rebuild`] use [`u64`] chain entries on this thread, for tests.
@@ -491,55 +547,38 @@ fn run<B: Bits, K: Known, W: ChainWord>(
         let mut active = NONE;
         stack.clear();
         for t in (first..=last).rev() {
-            let handle = hi > 0 && topo.handles[hi - 1].0 == t;
-            let s = if t == last {
-                sym::E
-            } else if handle {
-                hi -= 1;
-                sym::S
-            } else {
-                let fans = st.fans(active);
-                model.code_symbol(b, k.symbol(t), fans)
-            };
-            model.push(s);
             let c = 3 * t;
             st.create(t);
-            match s {
-                sym::C => {
+            // The symbol's decisions branch straight to its action: one unpredictable branch
+            // per decision, none after.
+            if t == last {
+                model.push(sym::E);
+            } else if hi > 0 && topo.handles[hi - 1].0 == t {
+                hi -= 1;
+                model.push(sym::S);
+                check!(st.glue_new(c, 1, active));
+                let partner = st.opposite(c + 2);
+                st.merge_edge(c + 2, partner);
+            } else {
+                let s = k.symbol(t);
+                let n = &mut model.nodes[st.fans(active) * HIST + model.hist];
+                if b.bit(&mut n[0], (s != sym::C) as u32) == 0 {
+                    model.push(sym::C);
                     check!(st.glue_new(c, 1, active));
                     let id = check!(st.take_id());
-                    check!(st.close_star(c, id));
-                }
-                sym::L => check!(st.glue_new(c, 1, active)),
-                sym::R => check!(st.glue_new(c, 2, active)),
-                sym::E => {
-                    if t != last {
-                        stack.push(active);
-                    }
-                }
-                _ => {
+                    check!(st.close_star(c, c + 1, id));
+                } else if b.bit(&mut n[1], (s != sym::R) as u32) == 0 {
+                    model.push(sym::R);
+                    check!(st.glue_new(c, 2, active));
+                } else if b.bit(&mut n[2], (s != sym::S) as u32) == 0 {
+                    model.push(sym::S);
+                    split(b, k, &mut st, &mut model, &mut stack, t, active, &mut tally)?;
+                } else if b.bit(&mut n[3], (s != sym::L) as u32) == 0 {
+                    model.push(sym::L);
                     check!(st.glue_new(c, 1, active));
-                    if handle {
-                        let partner = st.opposite(c + 2);
-                        st.merge_edge(c + 2, partner);
-                    } else {
-                        let len = k.hole(t);
-                        let len = model
-                            .code_hole(b, len)
-                            .ok_or_else(|| malformed(b.offset(), "hole length too long"))?;
-                        if len != 0 {
-                            if len < 2 {
-                                return Err(malformed(b.offset(), "hole of fewer than 2 vertices"));
-                            }
-                            tally.holes += 1;
-                            check!(st.hole(c, len));
-                        } else {
-                            let g = stack
-                                .pop()
-                                .ok_or_else(|| malformed(b.offset(), "S without a matching E"))?;
-                            check!(st.glue_new(c, 2, g));
-                        }
-                    }
+                } else {
+                    model.push(sym::E);
+                    stack.push(active);
                 }
             }
             active = c;
@@ -554,9 +593,9 @@ fn run<B: Bits, K: Known, W: ChainWord>(
             let c0 = 3 * comp.start;
             st.create(comp.start);
             check!(st.glue(c0, active));
-            for corner in [c0 + 2, c0 + 1, c0] {
+            for (corner, next) in [(c0 + 2, c0), (c0 + 1, c0 + 2), (c0, c0 + 1)] {
                 let id = check!(st.take_id());
-                check!(st.close_star(corner, id));
+                check!(st.close_star(corner, next, id));
             }
         } else {
             check!(st.external(comp.start));
