@@ -40,7 +40,7 @@ use std::io::Write;
 
 use crate::error::{Error, Result};
 use crate::ids::{Triangle, Vertex};
-use crate::lr::{LrLayout, LrTables, TriangleClass, Words};
+use crate::lr::{LrInspect, LrLayout, TriangleClass};
 use crate::ops::CornerOps;
 
 /// Most samples (pixels times supersamples) an image may have: 2^26, about 470 MB of buffers.
@@ -313,8 +313,8 @@ impl Camera {
 /// # Errors
 /// [`Error::InvalidMesh`] when `positions` has fewer entries than `lr` has vertices;
 /// [`Error::LimitExceeded`] when the image would have more than [`MAX_SAMPLES`] samples.
-pub fn render<W: Words>(
-    lr: &LrTables<W>,
+pub fn render<L: LrLayout>(
+    lr: &L,
     positions: &[[f32; 3]],
     options: &RenderOptions,
 ) -> Result<Image> {
@@ -395,11 +395,7 @@ pub fn render<W: Words>(
 
 /// The camera of [`render`]: fitted to the vertices of triangles (an unreferenced vertex far
 /// away must not shrink the picture). Positions past the end of `positions` are left out.
-pub fn camera<W: Words>(
-    lr: &LrTables<W>,
-    positions: &[[f32; 3]],
-    options: &RenderOptions,
-) -> Camera {
+pub fn camera<L: LrLayout>(lr: &L, positions: &[[f32; 3]], options: &RenderOptions) -> Camera {
     let mut used = vec![false; positions.len()];
     for t in lr.triangles() {
         for v in lr.triangle_vertices(t) {
@@ -418,7 +414,7 @@ pub fn camera<W: Words>(
 }
 
 /// Ring position of each ring vertex in `0..=1` (start to end of its ring).
-fn ring_parameters<W: Words>(lr: &LrTables<W>) -> Vec<f32> {
+fn ring_parameters<L: LrLayout>(lr: &L) -> Vec<f32> {
     let mut param = vec![0.0; lr.ring_vertices() as usize];
     for r in 0..lr.ring_count() {
         let Some(range) = lr.ring_range(r) else {
@@ -436,12 +432,7 @@ fn ring_parameters<W: Words>(lr: &LrTables<W>) -> Vec<f32> {
 
 /// Ring-order colour of triangle `t`: a ring-edge triangle takes its ring edge's place, a T0
 /// the mean place of its ring vertices; grey when none of its vertices is on a ring.
-fn ring_color<W: Words>(
-    lr: &LrTables<W>,
-    ring: &[f32],
-    t: Triangle,
-    vs: [Vertex; 3],
-) -> Option<[f32; 3]> {
+fn ring_color<L: LrLayout>(lr: &L, ring: &[f32], t: Triangle, vs: [Vertex; 3]) -> Option<[f32; 3]> {
     let slot = t.0 / 2;
     if t.0 < 2 * lr.ring_vertices() {
         return ring.get(slot as usize).map(|&x| blue_to_red(x));
@@ -487,7 +478,7 @@ fn class_color(class: TriangleClass) -> [f32; 3] {
 
 /// How far in front of the surface a ring line may be and still be drawn: a small fraction
 /// of the depth range of the mesh.
-fn depth_bias<W: Words>(camera: &Camera, positions: &[[f32; 3]], lr: &LrTables<W>) -> f32 {
+fn depth_bias<L: LrLayout>(camera: &Camera, positions: &[[f32; 3]], lr: &L) -> f32 {
     let (lo, hi) = lr
         .vertices()
         .filter_map(|v| camera.project(positions[v.idx()]))

@@ -5,7 +5,7 @@ mod common;
 
 use lrmesh::generate::{self, Rng};
 use lrmesh::io::{read_mesh, ReadOptions};
-use lrmesh::lr::{Lr, LrOptions, TriangleClass};
+use lrmesh::lr::{CompactLr, CompactOptions, Lr, LrInspect, LrOptions, TriangleClass};
 use lrmesh::render::{self, ColorMode, Image, RenderOptions, BACKGROUND};
 use lrmesh::{CornerOps, CornerTable, Error, Mesh, Vertex};
 
@@ -312,4 +312,55 @@ fn sizes_beyond_the_limit_are_refused() {
         render::render(lr.tables(), &positions[..1], &RenderOptions::default()),
         Err(Error::InvalidMesh(_))
     ));
+}
+
+#[test]
+fn compact_lr_renders_as_the_standard_lr_it_encodes() {
+    let mesh = corpus("mech-holes-shark.off");
+    let table = CornerTable::from_mesh(&mesh).unwrap();
+    let compact = CompactLr::build(&table, &CompactOptions::default()).unwrap();
+    let standard =
+        Lr::build_with_period(&table, &CompactOptions::default().lr, compact.period()).unwrap();
+    let positions: Vec<[f32; 3]> = (0..standard.vertex_id_bound())
+        .map(|v| mesh.positions[standard.input_vertex(Vertex(v)) as usize])
+        .collect();
+    let count = |lr: &dyn Fn(lrmesh::Triangle) -> Option<TriangleClass>, class| {
+        (0..standard
+            .triangle_id_bound()
+            .max(compact.tables().triangle_id_bound()))
+            .filter(|&t| lr(lrmesh::Triangle(t)) == Some(class))
+            .count()
+    };
+    let classes = [
+        TriangleClass::T0,
+        TriangleClass::T0Wart,
+        TriangleClass::T1Left,
+        TriangleClass::T1Right,
+        TriangleClass::T2,
+        TriangleClass::T2Wart,
+    ];
+    for class in classes {
+        assert_eq!(
+            count(&|t| compact.tables().triangle_class(t), class),
+            count(&|t| standard.tables().triangle_class(t), class),
+            "{class:?}"
+        );
+    }
+    assert_eq!(
+        count(&|t| compact.tables().triangle_class(t), TriangleClass::T0),
+        compact.counts().t0 as usize
+    );
+    for mode in [ColorMode::Ring, ColorMode::Classes] {
+        let options = RenderOptions {
+            width: 160,
+            height: 120,
+            mode,
+            ..RenderOptions::default()
+        };
+        assert_eq!(
+            render::render(compact.tables(), &positions, &options).unwrap(),
+            render::render(standard.tables(), &positions, &options).unwrap(),
+            "{mode:?}"
+        );
+    }
 }

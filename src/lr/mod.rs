@@ -207,14 +207,17 @@ pub enum TriangleClass {
     T2Wart,
 }
 
-impl<W: Words> LrTables<W> {
-    /// The class of canonical triangle `t`; `None` when `t` is not one ([`Self::is_triangle`]).
-    /// Renderers and statistics read it; the operators never need it.
-    pub fn triangle_class(&self, t: Triangle) -> Option<TriangleClass> {
+/// What pictures and statistics read from any encoding of the LR tables (standard, compact,
+/// owned or on a container's bytes): the class of each triangle and the vertices of each
+/// ring. The operators never need it.
+pub trait LrInspect: LrLayout {
+    /// The class of canonical triangle `t`; `None` when `t` is not one
+    /// ([`LrLayout::is_triangle`]).
+    fn triangle_class(&self, t: Triangle) -> Option<TriangleClass> {
         if !self.is_triangle(t) {
             return None;
         }
-        if t.0 >= 2 * self.m_r {
+        if t.0 >= 2 * self.ring_vertices() {
             return Some(TriangleClass::T0);
         }
         let (v, side) = (t.0 / 2, (t.0 % 2) as usize);
@@ -237,13 +240,12 @@ impl<W: Words> LrTables<W> {
 
     /// The ring vertices of ring `ring` (ids are consecutive along a ring), or `None` past
     /// the last ring.
-    pub fn ring_range(&self, ring: usize) -> Option<std::ops::Range<u32>> {
-        if ring + 1 >= self.ring_starts.count() {
-            return None;
-        }
-        Some(self.ring_starts.at(ring)..self.ring_starts.at(ring + 1))
+    fn ring_range(&self, ring: usize) -> Option<std::ops::Range<u32>> {
+        (ring < self.ring_count()).then(|| self.ring_start(ring)..self.ring_start(ring + 1))
     }
 }
+
+impl<T: LrLayout> LrInspect for T {}
 
 /// The operators of [`Lr::tables`].
 impl CornerOps for Lr {
