@@ -43,6 +43,10 @@ const fn rate_table<const LIMIT: u8>() -> [u8; 64] {
 
 const RATE_LIMIT: u8 = 6;
 static RATE: [u8; 64] = rate_table::<RATE_LIMIT>();
+/// The count from which the rate is [`RATE_LIMIT`]: a model past it no longer counts.
+const MATURE: u8 = 62;
+const _: () = assert!(rate_table::<RATE_LIMIT>()[MATURE as usize] == RATE_LIMIT);
+const _: () = assert!(rate_table::<RATE_LIMIT>()[MATURE as usize - 1] < RATE_LIMIT);
 
 /// One adaptive binary model: the probability of a 0 and how many bits it has seen.
 #[derive(Debug, Clone, Copy)]
@@ -68,8 +72,14 @@ impl Bit {
 
     #[inline(always)]
     fn update(&mut self, bit: u32) {
-        let shift = RATE[self.n as usize];
-        self.n += (self.n < 63) as u8;
+        // Most decisions go to mature models: a predictable branch, no table, no count.
+        let shift = if self.n < MATURE {
+            let s = RATE[self.n as usize];
+            self.n += 1;
+            s
+        } else {
+            RATE_LIMIT
+        };
         let p = self.p as u32;
         let p = if bit == 0 {
             p + ((P_MAX - p) >> shift)

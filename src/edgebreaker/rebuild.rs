@@ -91,18 +91,25 @@ impl Model {
 /// walks around a vertex, most of the decoding time, then cost one load per corner;
 /// `x.n.o` is `d1[x].p`, and the D2 step `y.p.o.p` is `d1[y.n].n`.
 struct State<W> {
-    d1: Vec<u32>,
+    slots: Vec<Slot<W>>,
     /// Vertices of each triangle.
     v: Vec<[u32; 3]>,
-    /// For a corner at either end of a chain of corners of one vertex linked by glued edges
-    /// (a fan being rebuilt), the corner at the other end and the chain's number of corners,
-    /// capped at [`FAN_CAP`] (all the context needs). Maintained at every gluing, so that the
-    /// context needs no walk.
-    chain: Vec<W>,
     /// Corner assignments left (see [`State::assign`]).
     budget: u32,
     /// Vertex ids still to give, counting down.
     n: u32,
+}
+
+/// What the pass keeps per corner, side by side so that one bounds check serves both.
+#[derive(Debug, Clone, Copy)]
+struct Slot<W> {
+    /// See [`State`].
+    d1: u32,
+    /// For a corner at either end of a chain of corners of one vertex linked by glued edges
+    /// (a fan being rebuilt), the corner at the other end and the chain's number of corners,
+    /// capped at [`FAN_CAP`] (all the context needs). Maintained at every gluing, so that the
+    /// context needs no walk.
+    chain: W,
 }
 
 type Step<T = ()> = std::result::Result<T, &'static str>;
@@ -171,23 +178,23 @@ impl<W: ChainWord> State<W> {
     /// `c.o`, or `NONE`.
     #[inline(always)]
     fn opposite(&self, c: u32) -> u32 {
-        match self.d1.get(prev(c) as usize) {
-            Some(&d) if d != NONE => prev(d),
+        match self.slots.get(prev(c) as usize) {
+            Some(&Slot { d1: d, .. }) if d != NONE => prev(d),
             _ => NONE,
         }
     }
 
     /// Glues without chain bookkeeping (for handle edges, before their triangles exist).
     fn glue_early(&mut self, a: u32, b: u32) -> Step {
-        let len = self.d1.len();
+        let len = self.slots.len();
         if a as usize >= len || b as usize >= len || a / 3 == b / 3 {
             return Err("handle corner out of range");
         }
-        if self.d1[prev(a) as usize] != NONE || self.d1[prev(b) as usize] != NONE {
+        if self.slots[prev(a) as usize].d1 != NONE || self.slots[prev(b) as usize].d1 != NONE {
             return Err("edge glued twice");
         }
-        self.d1[prev(a) as usize] = next(b);
-        self.d1[prev(b) as usize] = next(a);
+        self.slots[prev(a) as usize].d1 = next(b);
+        self.slots[prev(b) as usize].d1 = next(a);
         Ok(())
     }
 
@@ -195,16 +202,16 @@ impl<W: ChainWord> State<W> {
     /// and `.n` (which the callers often know without a division).
     #[inline(always)]
     fn glue3(&mut self, (pa, a, na): (u32, u32, u32), (pb, b, nb): (u32, u32, u32)) -> Step {
-        let len = self.d1.len();
+        let len = self.slots.len();
         if a as usize >= len || b as usize >= len {
             return Err("gate out of range");
         }
         let (pai, pbi) = (pa as usize, pb as usize);
-        if pai >= len || pbi >= len || self.d1[pai] != NONE || self.d1[pbi] != NONE {
+        if pai >= len || pbi >= len || self.slots[pai].d1 != NONE || self.slots[pbi].d1 != NONE {
             return Err("edge glued twice");
         }
-        self.d1[pai] = nb;
-        self.d1[pbi] = na;
+        self.slots[pai].d1 = nb;
+        self.slots[pbi].d1 = na;
         self.link(pb, na);
         self.link(pa, nb);
         Ok(())
@@ -244,9 +251,9 @@ impl<W: ChainWord> State<W> {
     #[inline(always)]
     fn create(&mut self, t: u32) {
         let c = 3 * t as usize;
-        if let Some(e) = self.chain.get_mut(c..c + 3) {
+        if let Some(e) = self.slots.get_mut(c..c + 3) {
             for (k, e) in e.iter_mut().enumerate() {
-                *e = W::entry((c + k) as u32, 1);
+                e.chain = W::entry((c + k) as u32, 1);
             }
         }
     }
@@ -254,7 +261,8 @@ impl<W: ChainWord> State<W> {
     /// Joins the chain that ends (direction D1) at `a` to the chain that starts at `b`.
     #[inline(always)]
     fn link(&mut self, a: u32, b: u32) {
-        let (Some(&ea), Some(&eb)) = (self.chain.get(a as usize), self.chain.get(b as usize))
+        let (Some(&Slot { chain: ea, .. }), Some(&Slot { chain: eb, .. })) =
+            (self.slots.get(a as usize), self.slots.get(b as usize))
         else {
             return;
         };
@@ -264,11 +272,11 @@ impl<W: ChainWord> State<W> {
         }
         let b1 = eb.end();
         let l = (ea.len() + eb.len()).min(FAN_CAP);
-        if let Some(e) = self.chain.get_mut(a0 as usize) {
-            *e = W::entry(b1, l);
+        if let Some(e) = self.slots.get_mut(a0 as usize) {
+            e.chain = W::entry(b1, l);
         }
-        if let Some(e) = self.chain.get_mut(b1 as usize) {
-            *e = W::entry(a0, l);
+        if let Some(e) = self.slots.get_mut(b1 as usize) {
+            e.chain = W::entry(a0, l);
         }
     }
 
@@ -303,7 +311,7 @@ impl<W: ChainWord> State<W> {
     /// The D1 successor of `x`, or `NONE`.
     #[inline(always)]
     fn step(&self, x: u32) -> u32 {
-        self.d1.get(x as usize).copied().unwrap_or(NONE)
+        self.slots.get(x as usize).map_or(NONE, |s| s.d1)
     }
 
     /// Gives vertex `id` to `a` and the corners after it in direction D1; returns the last.
@@ -328,8 +336,8 @@ impl<W: ChainWord> State<W> {
     #[inline(always)]
     fn fans(&self, active: u32) -> usize {
         let a = active as usize;
-        let (f1, f2) = match self.chain.get(a + 1..a + 3) {
-            Some(&[e1, e2]) => (e1.len(), e2.len()),
+        let (f1, f2) = match self.slots.get(a + 1..a + 3) {
+            Some(&[e1, e2]) => (e1.chain.len(), e2.chain.len()),
             _ => (0, 0),
         };
         (f1 * (FAN_CAP + 1) + f2) as usize
@@ -359,10 +367,10 @@ impl<W: ChainWord> State<W> {
     fn close_star(&mut self, a: u32, na: u32, id: u32) -> Step {
         self.set_vertex(a, id);
         let mut steps = 1u32;
-        // `NONE` is past the end of `d1`, so one bounds check tells both.
+        // `NONE` is past the end of `slots`, so one bounds check tells both.
         let mut x = a;
         let mut d = self.step(a);
-        while let Some(&dd) = self.d1.get(d as usize) {
+        while let Some(&Slot { d1: dd, .. }) = self.slots.get(d as usize) {
             if d == a {
                 return self.charge(steps);
             }
@@ -521,10 +529,15 @@ fn run<B: Bits, K: Known, W: ChainWord>(
     referenced: u32,
 ) -> Result<(Vec<[u32; 3]>, Tally)> {
     let mut st = State::<W> {
-        d1: vec![NONE; 3 * nt as usize],
+        slots: vec![
+            Slot {
+                d1: NONE,
+                chain: W::default(),
+            };
+            3 * nt as usize
+        ],
         v: vec![[NONE; 3]; nt as usize],
         n: referenced,
-        chain: vec![W::default(); 3 * nt as usize],
         budget: 3 * nt,
     };
     let mut tally = Tally::default();
@@ -536,6 +549,9 @@ fn run<B: Bits, K: Known, W: ChainWord>(
     let mut model = Model::new();
     let mut stack: Vec<u32> = Vec::new();
     let mut hi = topo.handles.len();
+    // The triangle of the next handle `S` (going down), or `NONE`.
+    let handle_at = |hi: usize| if hi > 0 { topo.handles[hi - 1].0 } else { NONE };
+    let mut next_handle = handle_at(hi);
     macro_rules! check {
         ($e:expr) => {
             $e.map_err(|m| malformed(b.offset(), m))?
@@ -544,17 +560,22 @@ fn run<B: Bits, K: Known, W: ChainWord>(
     for comp in topo.comps.iter().rev() {
         let last = comp.start + comp.size - 1;
         let first = comp.start + comp.closed as u32;
-        let mut active = NONE;
         stack.clear();
-        for t in (first..=last).rev() {
+        // The last triangle is an uncoded `E`.
+        st.create(last);
+        model.push(sym::E);
+        let mut active = 3 * last;
+        if b.overrun() {
+            return Err(malformed(b.offset(), "CLERS stream ends early"));
+        }
+        for t in (first..last).rev() {
             let c = 3 * t;
             st.create(t);
             // The symbol's decisions branch straight to its action: one unpredictable branch
             // per decision, none after.
-            if t == last {
-                model.push(sym::E);
-            } else if hi > 0 && topo.handles[hi - 1].0 == t {
+            if t == next_handle {
                 hi -= 1;
+                next_handle = handle_at(hi);
                 model.push(sym::S);
                 check!(st.glue_new(c, 1, active));
                 let partner = st.opposite(c + 2);
