@@ -5,9 +5,10 @@
 //! offers the standard corner operators through one trait ([`ops::CornerOps`]) that every
 //! connectivity representation implements: the Laced Ring ([`lr`], about one reference per
 //! triangle), Edgebreaker ([`edgebreaker`], about one bit per triangle, decoded
-//! sequentially) and triangle strips ([`strips`]). The `.lrm` container ([`write`],
-//! [`read`]) stores an LR so that the operators run on the file's bytes, with no copy.
-//! [`render`] draws an LR as a PNG; [`bench`] compares the representations in one run.
+//! sequentially) and triangle strips ([`strips`]). The `.lrm` container
+//! ([`write`](mod@write), [`read`]) stores an LR so that the operators run on the file's
+//! bytes, with no copy. [`render`] draws an LR as a PNG; [`bench`](mod@bench) compares the
+//! representations in one run.
 //!
 //! No input makes the library panic: malformed files and meshes give an [`Error`].
 //!
