@@ -197,9 +197,9 @@ impl LoopFigures {
 /// The comparison of [`run`]: one row per representation, the corner table first.
 ///
 /// Build times: the corner table from the mesh; owned LR, compact LR (every period of
-/// [`CompactOptions`], the smallest kept), Edgebreaker and strips from the corner table; the LR view's is the whole container's encoding from the mesh
-/// ([`write::encode`]). Open times: [`read::open`] (validation) for the LR view, decoding for
-/// Edgebreaker.
+/// [`CompactOptions`], the smallest kept), Edgebreaker and strips from the corner table; the
+/// LR view's is the whole container's encoding from the mesh ([`write::encode`]). Open times:
+/// [`read::open`] (validation) for the LR view, decoding for Edgebreaker.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct BenchReport {
     /// Vertices of the mesh as read.
@@ -427,9 +427,9 @@ impl std::fmt::Display for BenchReport {
         writeln!(f, ")")?;
         writeln!(
             f,
-            "build: corner table from the mesh; LR (owned), compact LR, Edgebreaker, CTS from \
-             the corner table; LR (view) encodes the whole .lrm from the mesh. open: validation of the \
-             .lrm (LR view), decoding (Edgebreaker)"
+            "build: corner table from the mesh; LR (owned), compact LR, Edgebreaker, CTS \
+             from the corner table; LR (view) encodes the whole .lrm from the mesh. open: \
+             validation of the .lrm (LR view), decoding (Edgebreaker)"
         )
     }
 }
