@@ -4,7 +4,10 @@
 //! order first; then the CTS and LR index list figures.
 //!
 //! `cargo bench --bench strips`. `LRMESH_BENCH_TRIANGLES` changes the torus size;
-//! `LRMESH_BENCH_SECONDS` the time spent on each measurement (default 0.2 s).
+//! `LRMESH_BENCH_SECONDS` the time spent on each measurement (default 0.2 s);
+//! `LRMESH_BENCH_ONLY=armadillo,knot1` keeps the meshes whose names contain one of the words.
+//! `PHASES=1` prints, per mesh, nanoseconds per triangle of the adjacency build and of the
+//! stripping apart, next to meshopt's.
 
 use lrmesh::generate;
 use lrmesh::io::{read_mesh, ReadOptions};
@@ -107,25 +110,30 @@ fn compare(mesh: &Mesh, budget: Duration) -> Row {
     }
 }
 
-fn phases(mesh: &Mesh) {
+/// Where the time goes (`PHASES=1`): adjacency build and stripping apart, next to meshopt, on
+/// the cache-ordered meshes.
+fn phases(name: &str, mesh: &Mesh, budget: Duration) {
     use lrmesh::strips::{stripify_adjacency, Adjacency};
-    let b = Duration::from_secs_f64(0.3);
-    let (tb, mut adj) = time(b, || {
-        Adjacency::build(mesh.positions.len(), &mesh.triangles)
-    });
-    let (ts, _) = time(b, || stripify_adjacency(&mut adj, &StripOptions::default()));
-    println!("phases: build {:?} strip {:?}", tb, ts);
     let m = cache_ordered(mesh);
-    let (tb, mut adj) = time(b, || Adjacency::build(m.positions.len(), &m.triangles));
-    let (ts, _) = time(b, || stripify_adjacency(&mut adj, &StripOptions::default()));
-    println!("cache-ordered phases: build {:?} strip {:?}", tb, ts);
+    let n = m.triangles.len().max(1) as f64;
+    let (tb, mut adj) = time(budget, || Adjacency::build(m.positions.len(), &m.triangles));
+    let (ts, _) = time(budget, || {
+        stripify_adjacency(&mut adj, &StripOptions::default())
+    });
+    let flat: Vec<u32> = m.triangles.iter().flatten().copied().collect();
+    let (tm, _) = time(budget, || {
+        meshopt::stripify(&flat, m.positions.len(), u32::MAX).unwrap_or_default()
+    });
+    let ns = |t: Duration| t.as_secs_f64() * 1e9 / n;
+    println!(
+        "{name:<34} ns/triangle: build {:6.1} strip {:6.1} meshopt {:6.1}",
+        ns(tb),
+        ns(ts),
+        ns(tm)
+    );
 }
 
 fn main() {
-    if std::env::var("PHASES").is_ok() {
-        phases(&generate::irregular_torus(2_000_000, 1));
-        return;
-    }
     let budget = Duration::from_secs_f64(
         std::env::var("LRMESH_BENCH_SECONDS")
             .ok()
@@ -148,7 +156,16 @@ fn main() {
         format!("irregular_torus({torus_size})"),
         generate::irregular_torus(torus_size, 1),
     ));
+    if let Ok(only) = std::env::var("LRMESH_BENCH_ONLY") {
+        meshes.retain(|(name, _)| only.split(',').any(|w| !w.is_empty() && name.contains(w)));
+    }
 
+    if std::env::var("PHASES").is_ok() {
+        for (name, mesh) in &meshes {
+            phases(name, mesh, budget);
+        }
+        return;
+    }
     println!(
         "{:<34} {:>9} | {:>7} {:>7} {:>7} {:>6} | {:>8} {:>8} {:>6}",
         "mesh", "triangles", "ours", "ours x4", "meshopt", "ratio", "ours M/s", "mopt M/s", "ratio"

@@ -1,10 +1,12 @@
 //! The triangle adjacency structure of Reuter, Behr and Alexa, "An Improved Adjacency Data
 //! Structure for Fast Triangle Stripping" (JGT 2005), with indices in place of pointers.
 //!
-//! Every triangle is one record holding its three half-edges (their twins), its stripping state
-//! and the two links of the doubly-linked degree list it sits in ([`Node`]). Half-edge `3t + i`
-//! of triangle `t = [v0, v1, v2]` runs from `v_i` to `v_(i+1) mod 3`; its triangle is `h / 3` and
-//! its next half-edge `3t + (i + 1) mod 3`, so neither needs storing.
+//! Every triangle is one record holding its three half-edges, that is their twins ([`Node`]).
+//! *Deviation:* the stripping state and the degree lists live apart from the records, in a
+//! byte per triangle and stacks (see the stripper), so that the stripper's look-ups at
+//! neighbours stay in a small array. Half-edge `3t + i` of triangle `t = [v0, v1, v2]` runs
+//! from `v_i` to `v_(i+1) mod 3`; its triangle is `h / 3` and its next half-edge
+//! `3t + (i + 1) mod 3`, so neither needs storing.
 //!
 //! # Construction (linear time)
 //!
@@ -14,22 +16,22 @@
 //! large ones (a vertex of high valence) through a per-vertex scratch array, so the whole pass
 //! stays linear.
 //!
-//! **Set aside** (the paper's "non-manifold case", emitted later as single triangles):
-//! triangles with a repeated vertex or a vertex out of range, and every triangle that uses a
-//! directed half-edge that a lower-numbered triangle already uses (a duplicate, an
-//! inconsistently oriented neighbour, or a third triangle on an edge). *Deviation:* the paper
-//! adds triangles one by one and checks only against the triangles already accepted; we check
-//! against all lower-numbered ones, which needs no sequential pass and sets aside at most a few
-//! more triangles. Half-edges of set-aside triangles are unlinked, so every twin joins two
-//! kept triangles along an edge used once in each direction.
+//! **Set aside** (emitted later as single triangles): triangles with a repeated vertex or a
+//! vertex out of range. **Left unlinked:** on each edge, the lowest half-edge of one direction
+//! pairs with the lowest of the other; a half-edge that repeats a direction (a duplicate
+//! triangle, an inconsistently oriented neighbour, a third triangle on the edge) gets no twin.
+//! So every twin joins two triangles along an edge used once in each direction. *Deviation:*
+//! the paper sets aside every triangle of this "non-manifold case"; we keep it in the graph
+//! through its other edges, which on a mesh with inconsistent orientation (corpus
+//! `blobby-shuffled`) turns most of the lone triangles into strips.
 
 use crate::corner_table::{CornerTable, NONE};
 use crate::ops::CornerOps;
 
 /// Stripping state of a triangle that is in no degree list: already emitted.
-pub(crate) const DONE: u32 = 4;
+pub(crate) const DONE: u8 = 4;
 /// Stripping state of a set-aside triangle.
-pub(crate) const ASIDE: u32 = 5;
+pub(crate) const ASIDE: u8 = 5;
 
 /// Bucket size up to which half-edges are matched by scanning the bucket.
 const SCAN_LIMIT: usize = 24;
@@ -40,19 +42,15 @@ pub struct Node {
     /// The twin of each half-edge, as a half-edge id `3u + j`, or `u32::MAX` on a boundary
     /// (or cut) edge.
     pub twin: [u32; 3],
-    /// Next triangle in the same degree list (`u32::MAX` at the end).
-    pub(crate) next: u32,
-    /// Previous triangle in the same degree list (`u32::MAX` at the head).
-    pub(crate) prev: u32,
-    /// Degree (0 to 3: number of unprocessed neighbours) while in a degree list; else
-    /// `DONE` or `ASIDE`.
-    pub(crate) state: u32,
 }
 
 /// The triangle adjacency graph of an indexed triangle set (see the module documentation).
 #[derive(Debug, Clone)]
 pub struct Adjacency {
     pub(crate) nodes: Vec<Node>,
+    /// Number of neighbours of each triangle (its twins), or `ASIDE`: the stripper's starting
+    /// state, kept in a small array of its own so that its look-ups stay in cache.
+    pub(crate) degree: Vec<u8>,
     pub(crate) tris: Vec<[u32; 3]>,
     pub(crate) vertex_count: usize,
     aside: u32,
@@ -64,128 +62,115 @@ fn link(nodes: &mut [Node], h: u32, g: u32) {
     nodes[(g / 3) as usize].twin[(g % 3) as usize] = h;
 }
 
-impl Adjacency {
-    /// Builds the adjacency graph of `triangles` over `vertex_count` vertices in linear time.
-    /// Never fails: triangles that cannot join the graph are set aside (see the module
-    /// documentation).
-    pub fn build(vertex_count: usize, triangles: &[[u32; 3]]) -> Adjacency {
-        let n = triangles.len();
-        let blank = Node {
-            twin: [NONE; 3],
-            next: NONE,
-            prev: NONE,
-            state: 0,
-        };
-        let mut nodes = vec![blank; n];
-        // Two buckets per vertex: half-edges lo -> hi, then hi -> lo.
-        let mut start = vec![0u32; 2 * vertex_count + 2];
-        for (t, tri) in triangles.iter().enumerate() {
-            let [a, b, c] = *tri;
-            if a == b || b == c || a == c || tri.iter().any(|&x| x as usize >= vertex_count) {
-                nodes[t].state = ASIDE;
-                continue;
-            }
-            for (x, y) in [(a, b), (b, c), (c, a)] {
-                let key = 2 * x.min(y) as usize + (x > y) as usize;
-                start[key + 1] += 1;
-            }
+/// Links the twins of `triangles` over `vertex_count` vertices (see the module documentation)
+/// and returns the records, the degrees (`ASIDE` for set-aside triangles) and the number of
+/// set-aside triangles.
+pub(crate) fn link_twins(vertex_count: usize, triangles: &[[u32; 3]]) -> (Vec<Node>, Vec<u8>, u32) {
+    let n = triangles.len();
+    let mut nodes = vec![Node { twin: [NONE; 3] }; n];
+    let mut degree = vec![0u8; n];
+    // Two buckets per vertex: half-edges lo -> hi, then hi -> lo. `start[k]` counts bucket k,
+    // then (inclusive prefix sums, filled downwards) begins it; it ends at `start[k + 1]`.
+    let mut start = vec![0u32; 2 * vertex_count + 1];
+    let key = |x: u32, y: u32| 2 * x.min(y) as usize + (x > y) as usize;
+    let mut aside = 0;
+    for (t, &[a, b, c]) in triangles.iter().enumerate() {
+        let in_range = (a as usize) < vertex_count
+            && (b as usize) < vertex_count
+            && (c as usize) < vertex_count;
+        if a == b || b == c || a == c || !in_range {
+            degree[t] = ASIDE;
+            aside += 1;
+            continue;
         }
-        for i in 1..start.len() {
-            start[i] += start[i - 1];
+        start[key(a, b)] += 1;
+        start[key(b, c)] += 1;
+        start[key(c, a)] += 1;
+    }
+    let mut total = 0;
+    for x in start.iter_mut() {
+        total += *x;
+        *x = total;
+    }
+    // (higher vertex, half-edge), in decreasing half-edge order within each bucket.
+    let mut bucket = vec![(0u32, 0u32); total as usize];
+    for (t, &[a, b, c]) in triangles.iter().enumerate() {
+        if degree[t] == ASIDE {
+            continue;
         }
-        let total = start[start.len() - 1] as usize;
-        // (higher vertex, half-edge) in half-edge order within each bucket.
-        let mut bucket = vec![(0u32, 0u32); total];
-        {
-            let mut fill = start.clone();
-            for (t, tri) in triangles.iter().enumerate() {
-                if nodes[t].state == ASIDE {
+        let h = 3 * t as u32;
+        for (i, (x, y)) in [(a, b), (b, c), (c, a)].into_iter().enumerate() {
+            let slot = &mut start[key(x, y)];
+            *slot -= 1;
+            bucket[*slot as usize] = (x.max(y), h + i as u32);
+        }
+    }
+    // Match each edge's half-edges, bucket by bucket: the lowest of each direction pair up; a
+    // half-edge used again in the same direction (a duplicate, an inconsistently oriented
+    // neighbour, a third triangle on the edge) stays unlinked. Small buckets are scanned, large
+    // ones (a vertex of high valence) go through per-vertex scratch arrays, so that the whole
+    // pass stays linear.
+    let mut first_fwd: Vec<u32> = Vec::new();
+    let mut first_bwd: Vec<u32> = Vec::new();
+    for lo in 0..vertex_count {
+        let (s, m, e) = (
+            start[2 * lo] as usize,
+            start[2 * lo + 1] as usize,
+            start[2 * lo + 2] as usize,
+        );
+        if m == s || e == m {
+            continue;
+        }
+        let (fwd, bwd) = (&bucket[s..m], &bucket[m..e]);
+        if e - s <= SCAN_LIMIT {
+            for (i, &(hi, h)) in fwd.iter().enumerate().rev() {
+                if fwd[i + 1..].iter().any(|x| x.0 == hi) {
                     continue;
                 }
-                let [a, b, c] = *tri;
-                for (i, (x, y)) in [(a, b), (b, c), (c, a)].into_iter().enumerate() {
-                    let key = 2 * x.min(y) as usize + (x > y) as usize;
-                    let slot = &mut fill[key];
-                    bucket[*slot as usize] = (x.max(y), 3 * t as u32 + i as u32);
-                    *slot += 1;
+                if let Some(&(_, g)) = bwd.iter().rev().find(|x| x.0 == hi) {
+                    link(&mut nodes, h, g);
                 }
+            }
+        } else {
+            if first_fwd.is_empty() {
+                first_fwd = vec![NONE; vertex_count];
+                first_bwd = vec![NONE; vertex_count];
+            }
+            // Lowest half-edge of each direction (buckets hold decreasing half-edges).
+            for &(hi, h) in fwd {
+                first_fwd[hi as usize] = h;
+            }
+            for &(hi, h) in bwd {
+                first_bwd[hi as usize] = h;
+            }
+            for &(hi, _) in fwd {
+                let (f, b) = (first_fwd[hi as usize], first_bwd[hi as usize]);
+                if f != NONE && b != NONE {
+                    link(&mut nodes, f, b);
+                }
+                first_fwd[hi as usize] = NONE;
+            }
+            for &(hi, _) in bwd {
+                first_bwd[hi as usize] = NONE;
             }
         }
-        let mut first_fwd: Vec<u32> = Vec::new();
-        let mut first_bwd: Vec<u32> = Vec::new();
-        let dup = |nodes: &mut [Node], h: u32| nodes[(h / 3) as usize].state = ASIDE;
-        for lo in 0..vertex_count {
-            let (s, m, e) = (
-                start[2 * lo] as usize,
-                start[2 * lo + 1] as usize,
-                start[2 * lo + 2] as usize,
-            );
-            if s == e {
-                continue;
-            }
-            let (fwd, bwd) = (&bucket[s..m], &bucket[m..e]);
-            if e - s <= SCAN_LIMIT {
-                for (i, &(hi, h)) in fwd.iter().enumerate() {
-                    if fwd[..i].iter().any(|x| x.0 == hi) {
-                        dup(&mut nodes, h);
-                    } else if let Some(&(_, g)) = bwd.iter().find(|x| x.0 == hi) {
-                        link(&mut nodes, h, g);
-                    }
-                }
-                for (i, &(hi, h)) in bwd.iter().enumerate() {
-                    if bwd[..i].iter().any(|x| x.0 == hi) {
-                        dup(&mut nodes, h);
-                    }
-                }
-            } else {
-                if first_fwd.is_empty() {
-                    first_fwd = vec![NONE; vertex_count];
-                    first_bwd = vec![NONE; vertex_count];
-                }
-                for &(hi, h) in fwd {
-                    let f = &mut first_fwd[hi as usize];
-                    if *f == NONE {
-                        *f = h;
-                    } else {
-                        dup(&mut nodes, h);
-                    }
-                }
-                for &(hi, h) in bwd {
-                    let b = &mut first_bwd[hi as usize];
-                    if *b == NONE {
-                        *b = h;
-                        let f = first_fwd[hi as usize];
-                        if f != NONE {
-                            link(&mut nodes, f, h);
-                        }
-                    } else {
-                        dup(&mut nodes, h);
-                    }
-                }
-                for &(hi, _) in fwd.iter().chain(bwd) {
-                    first_fwd[hi as usize] = NONE;
-                    first_bwd[hi as usize] = NONE;
-                }
-            }
+    }
+    for (d, node) in degree.iter_mut().zip(&nodes) {
+        if *d != ASIDE {
+            *d = node.twin.iter().map(|&g| (g != NONE) as u8).sum();
         }
-        drop(bucket);
-        // Unlink the set-aside triangles.
-        let mut aside = 0;
-        for t in 0..n {
-            if nodes[t].state != ASIDE {
-                continue;
-            }
-            aside += 1;
-            for i in 0..3 {
-                let g = nodes[t].twin[i];
-                if g != NONE {
-                    nodes[(g / 3) as usize].twin[(g % 3) as usize] = NONE;
-                    nodes[t].twin[i] = NONE;
-                }
-            }
-        }
+    }
+    (nodes, degree, aside)
+}
+
+impl Adjacency {
+    /// Builds the adjacency graph of `triangles` over `vertex_count` vertices. Never fails:
+    /// triangles that cannot join the graph are set aside (see the module documentation).
+    pub fn build(vertex_count: usize, triangles: &[[u32; 3]]) -> Adjacency {
+        let (nodes, degree, aside) = link_twins(vertex_count, triangles);
         Adjacency {
             nodes,
+            degree,
             tris: triangles.to_vec(),
             vertex_count,
             aside,
@@ -209,18 +194,18 @@ impl Adjacency {
                     *tw = 3 * (d / 3) + (d % 3 + 1) % 3;
                 }
             }
-            nodes.push(Node {
-                twin,
-                next: NONE,
-                prev: NONE,
-                state: 0,
-            });
+            nodes.push(Node { twin });
             tris.push([v[3 * t], v[3 * t + 1], v[3 * t + 2]]);
         }
+        let degree = nodes
+            .iter()
+            .map(|node| node.twin.iter().filter(|&&g| g != NONE).count() as u8)
+            .collect();
         Adjacency {
             nodes,
             tris,
             vertex_count: table.vertex_id_bound() as usize,
+            degree,
             aside: 0,
         }
     }
@@ -237,9 +222,7 @@ impl Adjacency {
 
     /// Whether triangle `t` was set aside.
     pub fn is_set_aside(&self, t: u32) -> bool {
-        self.nodes
-            .get(t as usize)
-            .is_some_and(|node| node.state == ASIDE)
+        self.degree.get(t as usize) == Some(&ASIDE)
     }
 
     /// The twin of half-edge `h` (`3t + i`), `None` on a boundary, a cut edge or out of range.

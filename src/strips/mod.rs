@@ -64,8 +64,8 @@ pub struct Strips {
     /// Triangle fans separated by [`RESTART`]: the centre `c`, then the rim `r_0, r_1, ...`;
     /// triangle `k` is `(c, r_k, r_k+1)`.
     pub fans: Vec<u32>,
-    /// Lone triangles, three indices each: set-aside ones (degenerate, out of range or
-    /// non-manifold, see [`Adjacency`]) first, in input order, then isolated ones.
+    /// Lone triangles, three indices each: set-aside ones (degenerate or out of range, see
+    /// [`Adjacency`]) first, in input order, then isolated ones.
     pub list: Vec<u32>,
     /// The input triangle of each non-degenerate strip triangle, in strip order.
     pub strip_order: Vec<u32>,
@@ -138,8 +138,9 @@ pub fn decode_strips(strips: &[u32], out: &mut Vec<[u32; 3]>) {
 /// exactly once, with its orientation: in a strip, a fan or the list of lone triangles.
 /// Linear time per sample; never panics.
 pub fn stripify(vertex_count: usize, triangles: &[[u32; 3]], options: &StripOptions) -> Strips {
-    let mut adj = Adjacency::build(vertex_count, triangles);
-    stripper::stripify_adjacency(&mut adj, options)
+    // The records alone: the stripper reads the triangles where they are.
+    let (nodes, degree, _) = adjacency::link_twins(vertex_count, triangles);
+    stripper::stripify_nodes(&nodes, &degree, triangles, vertex_count, options)
 }
 
 /// Strips an [`Adjacency`] graph (which may be reused: each run resets its lists).

@@ -16,7 +16,7 @@ pub struct StripStats {
     pub strips: u32,
     /// Number of fans.
     pub fans: u32,
-    /// Triangles drawn alone (isolated, degenerate or set aside as non-manifold).
+    /// Triangles drawn alone (isolated, degenerate or out of range).
     pub isolated_triangles: u32,
     /// Constrained triangle strips `T` plus the adjacent-strips table `A`, 32 bits an entry,
     /// per triangle of the corner table.

@@ -5,14 +5,14 @@
 //! 2. *Fans* (optional): every vertex with at least [`StripOptions::fan_threshold`] triangles
 //!    around it, in vertex order, gives a fan of its still unprocessed triangles that follow one
 //!    another around it.
-//! 3. The remaining triangles sit in four doubly-linked lists, one per degree 0 to 3 (the
-//!    number of unprocessed neighbours). Each strip starts at the head of the lowest non-empty
-//!    list; a triangle of degree 0 there is *isolated* and goes to the triangle list. The strip
+//! 3. The remaining triangles sit in four lists, one per degree 0 to 3 (the number of
+//!    unprocessed neighbours), kept with lazy deletion (see `Lists`). Each strip starts at the
+//!    head of the lowest non-empty list; a triangle of degree 0 there is *isolated* and goes to the triangle list. The strip
 //!    takes the start's lowest-degree neighbour as its second triangle and then grows by
 //!    alternating turns: through the edge made by the last two indices when that neighbour is
 //!    free, otherwise through the triangle's other free edge after a *swap* (one repeated index,
 //!    a zero-area triangle), otherwise it ends. Each triangle taken leaves its list and drops
-//!    its free neighbours to the list below, by relinking.
+//!    its free neighbours to the list below.
 //! 4. With [`StripOptions::samples`] above one, the stripping is repeated with randomised
 //!    starts (a rotated list order and random ties) and the result with the fewest indices is
 //!    kept.
@@ -22,77 +22,116 @@ use super::{StripOptions, Strips, RESTART};
 use crate::corner_table::NONE;
 use crate::generate::Rng;
 
-/// The four degree lists, threaded through the nodes.
+/// The four degree lists, with lazy deletion. List `d` is the triangles whose degree was `d`
+/// from the start, in (rotated) triangle order, under the triangles whose degree dropped to `d`
+/// since, newest first: exactly the order of the paper's doubly-linked lists filled back to
+/// front and relinked at the head, without touching any neighbour's links.
+///
+/// The first part is a cursor over the triangle order, the second a stack. A triangle whose
+/// degree drops is pushed onto the lower stack; its entry in the higher list goes stale (its
+/// state no longer names that list) and is skipped when it comes up. Degrees only fall, so a
+/// triangle enters each stack at most once, and when a stack is empty every triangle whose
+/// state names the list was there from the start, so the cursor finds the head.
 struct Lists {
-    head: [u32; 4],
+    stacks: [Vec<u32>; 4],
+    /// Next position of the rotated triangle order to look at, per list.
+    cursor: [u32; 4],
+    n: u32,
+    offset: u32,
 }
 
 impl Lists {
-    #[inline(always)]
-    fn push(&mut self, nodes: &mut [Node], t: u32, d: u32) {
-        let h = self.head[d as usize];
-        let node = &mut nodes[t as usize];
-        node.state = d;
-        node.prev = NONE;
-        node.next = h;
-        if h != NONE {
-            nodes[h as usize].prev = t;
-        }
-        self.head[d as usize] = t;
-    }
-
-    #[inline(always)]
-    fn unlink(&mut self, nodes: &mut [Node], t: u32) {
-        let Node {
-            next, prev, state, ..
-        } = nodes[t as usize];
-        if prev == NONE {
-            self.head[state as usize] = next;
-        } else {
-            nodes[prev as usize].next = next;
-        }
-        if next != NONE {
-            nodes[next as usize].prev = prev;
-        }
-    }
-
     /// Takes `t` out of its list for good and drops its free neighbours one degree.
     #[inline(always)]
-    fn take(&mut self, nodes: &mut [Node], t: u32) {
-        self.unlink(nodes, t);
-        nodes[t as usize].state = DONE;
-        let twin = nodes[t as usize].twin;
-        for g in twin {
+    fn take(&mut self, nodes: &[Node], state: &mut [u8], t: u32) {
+        state[t as usize] = DONE;
+        self.drop_neighbours(&nodes[t as usize].twin, state, NONE);
+    }
+
+    /// Drops the free triangles across `twin` but `skip` one degree.
+    #[inline(always)]
+    fn drop_neighbours(&mut self, twin: &[u32; 3], state: &mut [u8], skip: u32) {
+        for &g in twin {
             if g == NONE {
                 continue;
             }
             let u = g / 3;
-            let d = nodes[u as usize].state;
-            if d <= 3 {
-                self.unlink(nodes, u);
-                // A free neighbour shares an edge with t, so its degree is at least one.
-                self.push(nodes, u, d.saturating_sub(1));
+            let d = state[u as usize];
+            if d <= 3 && u != skip {
+                // A free neighbour shares an edge with the taken triangle: its degree is at
+                // least one.
+                let d = d.saturating_sub(1);
+                state[u as usize] = d;
+                self.stacks[d as usize].push(u);
             }
         }
     }
 
+    /// The head of the lowest non-empty list (stale entries on top are dropped).
     #[inline(always)]
-    fn lowest(&self) -> Option<u32> {
-        self.head.iter().copied().find(|&h| h != NONE)
+    fn lowest(&mut self, state: &[u8]) -> Option<u32> {
+        for d in 0..4 {
+            while let Some(&t) = self.stacks[d].last() {
+                if state[t as usize] == d as u8 {
+                    return Some(t);
+                }
+                self.stacks[d].pop();
+            }
+            while self.cursor[d] < self.n {
+                let k = self.cursor[d] + self.offset;
+                let t = if k >= self.n { k - self.n } else { k };
+                if state[t as usize] == d as u8 {
+                    return Some(t);
+                }
+                self.cursor[d] += 1;
+            }
+        }
+        None
     }
 }
 
 #[inline(always)]
-fn free(nodes: &[Node], g: u32) -> bool {
-    g != NONE && nodes[(g / 3) as usize].state <= 3
+fn free(state: &[u8], g: u32) -> bool {
+    g != NONE && state[(g / 3) as usize] <= 3
 }
 
 /// Strips `adj` with `options`, keeping the best of the samples.
 pub(crate) fn stripify_adjacency(adj: &mut Adjacency, options: &StripOptions) -> Strips {
+    stripify_nodes(
+        &adj.nodes,
+        &adj.degree,
+        &adj.tris,
+        adj.vertex_count,
+        options,
+    )
+}
+
+/// Strips the triangles `tris` whose records (twins linked) are `nodes`.
+pub(crate) fn stripify_nodes(
+    nodes: &[Node],
+    degree: &[u8],
+    tris: &[[u32; 3]],
+    vertex_count: usize,
+    options: &StripOptions,
+) -> Strips {
     let mut rng = Rng::new(options.seed);
     let mut best: Option<Strips> = None;
+    let mut state = degree.to_vec();
+    let any_aside = degree.contains(&ASIDE);
     for sample in 0..options.samples.max(1) {
-        let out = run(adj, options, sample, &mut rng);
+        if sample > 0 {
+            state.copy_from_slice(degree);
+        }
+        let out = run(
+            nodes,
+            &mut state,
+            any_aside,
+            tris,
+            vertex_count,
+            options,
+            sample,
+            &mut rng,
+        );
         if best
             .as_ref()
             .is_none_or(|b| out.index_count() < b.index_count())
@@ -104,58 +143,71 @@ pub(crate) fn stripify_adjacency(adj: &mut Adjacency, options: &StripOptions) ->
 }
 
 /// One stripping of `adj`; sample 0 is deterministic, later ones randomised through `rng`.
-fn run(adj: &mut Adjacency, options: &StripOptions, sample: u32, rng: &mut Rng) -> Strips {
-    let tris = &adj.tris;
-    let nodes = &mut adj.nodes[..];
+#[allow(clippy::too_many_arguments)]
+fn run(
+    nodes: &[Node],
+    state: &mut [u8],
+    any_aside: bool,
+    tris: &[[u32; 3]],
+    vertex_count: usize,
+    options: &StripOptions,
+    sample: u32,
+    rng: &mut Rng,
+) -> Strips {
     let n = nodes.len() as u32;
     let mut out = Strips {
         strips: Vec::with_capacity(n as usize + n as usize / 4),
         strip_order: Vec::with_capacity(n as usize),
         ..Strips::default()
     };
-    let mut lists = Lists { head: [NONE; 4] };
     let offset = if sample == 0 || n == 0 {
         0
     } else {
         rng.below(n)
     };
-    // Fill the lists back to front so that each list's head is its lowest triangle (after the
-    // rotation by `offset`).
-    for k in (0..n).rev() {
-        let t = if k + offset >= n {
-            k + offset - n
-        } else {
-            k + offset
-        };
-        let node = &nodes[t as usize];
-        if node.state == ASIDE {
-            continue;
-        }
-        let d = node.twin.iter().filter(|&&g| g != NONE).count() as u32;
-        lists.push(nodes, t, d);
-    }
+    let mut lists = Lists {
+        stacks: [
+            Vec::new(),
+            Vec::with_capacity(n as usize / 4),
+            Vec::with_capacity(n as usize / 2),
+            Vec::new(),
+        ],
+        cursor: [0; 4],
+        n,
+        offset,
+    };
     // Set-aside triangles, verbatim.
-    for t in 0..n {
-        if nodes[t as usize].state == ASIDE {
-            out.list.extend_from_slice(&tris[t as usize]);
-            out.list_order.push(t);
+    if any_aside {
+        for t in 0..n {
+            if state[t as usize] == ASIDE {
+                out.list.extend_from_slice(&tris[t as usize]);
+                out.list_order.push(t);
+            }
         }
     }
     if options.fan_threshold >= 3 {
-        fans(tris, nodes, &mut lists, adj.vertex_count, options, &mut out);
+        fans(
+            tris,
+            nodes,
+            state,
+            &mut lists,
+            vertex_count,
+            options,
+            &mut out,
+        );
     }
     let mut swaps = 0u32;
-    while let Some(t0) = lists.lowest() {
-        lists.take(nodes, t0);
+    while let Some(t0) = lists.lowest(state) {
+        lists.take(nodes, state, t0);
         // The start's lowest-degree free neighbour.
         let mut best = NONE;
-        let mut best_degree = u32::MAX;
+        let mut best_degree = u8::MAX;
         let twin = nodes[t0 as usize].twin;
         for (i, &g) in twin.iter().enumerate() {
-            if !free(nodes, g) {
+            if !free(state, g) {
                 continue;
             }
-            let d = nodes[(g / 3) as usize].state;
+            let d = state[(g / 3) as usize];
             if d < best_degree || (d == best_degree && sample > 0 && rng.below(2) == 0) {
                 best = i as u32;
                 best_degree = d;
@@ -179,14 +231,15 @@ fn run(adj: &mut Adjacency, options: &StripOptions, sample: u32, rng: &mut Rng) 
             .extend_from_slice(&[tri[(i + 2) % 3], tri[i], tri[(i + 1) % 3]]);
         out.strip_order.push(t0);
         let mut entry = twin[i];
+        // The strip's last two indices.
+        let (mut p, mut q) = (tri[i], tri[(i + 1) % 3]);
         loop {
             let cur = entry / 3;
-            lists.take(nodes, cur);
+            state[cur as usize] = DONE;
             out.strip_order.push(cur);
             let k = (entry % 3) as usize;
             let tv = tris[cur as usize];
             let r = tv[(k + 2) % 3];
-            let q = out.strips[out.strips.len() - 1];
             // The entry half-edge runs tv[k] -> tv[k+1]; the natural exit edge joins q and r.
             let (natural, other) = if tv[k] == q {
                 ((k + 2) % 3, (k + 1) % 3)
@@ -194,19 +247,26 @@ fn run(adj: &mut Adjacency, options: &StripOptions, sample: u32, rng: &mut Rng) 
                 ((k + 1) % 3, (k + 2) % 3)
             };
             let twin = nodes[cur as usize].twin;
-            if free(nodes, twin[natural]) {
+            let next = if free(state, twin[natural]) {
                 out.strips.push(r);
-                entry = twin[natural];
-            } else if free(nodes, twin[other]) {
-                let p = out.strips[out.strips.len() - 2];
-                out.strips.push(p);
-                out.strips.push(r);
+                (p, q) = (q, r);
+                twin[natural]
+            } else if free(state, twin[other]) {
+                out.strips.extend_from_slice(&[p, r]);
                 swaps += 1;
-                entry = twin[other];
+                q = r;
+                twin[other]
             } else {
                 out.strips.push(r);
+                NONE
+            };
+            // Taking `cur` drops its other free neighbours one degree; the next triangle of
+            // the strip is taken at once, so its degree no longer matters.
+            lists.drop_neighbours(&twin, state, if next == NONE { NONE } else { next / 3 });
+            if next == NONE {
                 break;
             }
+            entry = next;
         }
     }
     out.swaps = swaps;
@@ -216,7 +276,8 @@ fn run(adj: &mut Adjacency, options: &StripOptions, sample: u32, rng: &mut Rng) 
 /// Fans around vertices with at least `options.fan_threshold` triangles.
 fn fans(
     tris: &[[u32; 3]],
-    nodes: &mut [Node],
+    nodes: &[Node],
+    state: &mut [u8],
     lists: &mut Lists,
     vertex_count: usize,
     options: &StripOptions,
@@ -225,7 +286,7 @@ fn fans(
     let mut count = vec![0u32; vertex_count];
     let mut corner = vec![NONE; vertex_count];
     for (t, tri) in tris.iter().enumerate() {
-        if nodes[t].state == ASIDE {
+        if state[t] == ASIDE {
             continue;
         }
         for (i, &v) in tri.iter().enumerate() {
@@ -237,7 +298,7 @@ fn fans(
     let mut rim = Vec::new();
     for v in 0..vertex_count {
         let h0 = corner[v];
-        if count[v] < options.fan_threshold || h0 == NONE || nodes[(h0 / 3) as usize].state > 3 {
+        if count[v] < options.fan_threshold || h0 == NONE || state[(h0 / 3) as usize] > 3 {
             continue;
         }
         // Back to the first free triangle of the fan: the half-edge leaving v in the previous
@@ -245,7 +306,7 @@ fn fans(
         let mut h = h0;
         loop {
             let g = nodes[(h / 3) as usize].twin[(h % 3) as usize];
-            if !free(nodes, g) {
+            if !free(state, g) {
                 break;
             }
             let back = half(g, 1);
@@ -268,7 +329,7 @@ fn fans(
             rim.push(tv[(i + 2) % 3]);
             members += 1;
             let g = nodes[t as usize].twin[(i + 2) % 3];
-            if !free(nodes, g) || g == first {
+            if !free(state, g) || g == first {
                 break;
             }
             h = g;
@@ -289,7 +350,7 @@ fn fans(
         for _ in 0..members {
             let t = h / 3;
             let g = nodes[t as usize].twin[((h % 3 + 2) % 3) as usize];
-            lists.take(nodes, t);
+            lists.take(nodes, state, t);
             out.fan_order.push(t);
             h = g;
         }
