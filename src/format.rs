@@ -41,6 +41,8 @@ impl Tag {
     pub const EBRK: Tag = Tag(*b"EBRK");
     /// Constrained triangle strips with the adjacent-strips table (`T`, `A`, `C`).
     pub const STRP: Tag = Tag(*b"STRP");
+    /// The bit-efficient LR tables.
+    pub const LRBE: Tag = Tag(*b"LRBE");
     /// Vertex copies made by the pseudo-manifold conversion, with their originals.
     pub const COPY: Tag = Tag(*b"COPY");
     /// Degenerate triangles kept aside.
@@ -66,6 +68,8 @@ pub mod kind {
     pub const EDGEBREAKER: u32 = 2;
     /// Constrained triangle strips and the adjacent-strips table in section `STRP`.
     pub const STRIPS: u32 = 3;
+    /// Bit-efficient LR in section `LRBE`.
+    pub const LR_COMPACT: u32 = 4;
 }
 
 /// Position encodings (first field of the `GEOM` section).
@@ -82,3 +86,5 @@ pub const MESH_LEN: usize = 24;
 pub const LRTB_HEADER_LEN: usize = 32;
 /// Size of the fixed part of the `STRP` section (four u32).
 pub const STRP_HEADER_LEN: usize = 16;
+/// Size of the fixed part of the `LRBE` section (eight u32).
+pub const LRBE_HEADER_LEN: usize = 32;

@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand, ValueEnum};
 use lrmesh::edgebreaker::EdgebreakerStats;
 use lrmesh::io::{self, ReadOptions};
-use lrmesh::lr::{Lr, LrOptions, LrStats};
+use lrmesh::lr::{CompactLr, CompactOptions, Lr, LrOptions, LrStats};
 use lrmesh::read::{self, Limits};
 use lrmesh::strips::StripStats;
 use lrmesh::write::{self, EncodeOptions};
@@ -69,6 +69,10 @@ enum Command {
         /// Seed for the choice of seed corners (same seed, same result).
         #[arg(long, default_value_t = LrOptions::default().seed)]
         seed: u64,
+        /// Bit-efficient LR: the HYBRID-RING-EXPANDER period k to use (0: depth first)
+        /// instead of trying several and keeping the smallest.
+        #[arg(long)]
+        period: Option<u32>,
     },
     /// Encode a mesh into an .lrm container and print the sizes.
     Encode {
@@ -92,6 +96,10 @@ enum Command {
         /// Seed for the choice of seed corners (same seed, same bytes).
         #[arg(long, default_value_t = LrOptions::default().seed)]
         seed: u64,
+        /// Bit-efficient LR: the HYBRID-RING-EXPANDER period k to use (0: depth first)
+        /// instead of trying several and keeping the smallest.
+        #[arg(long)]
+        period: Option<u32>,
         /// STL input only: merge corners with identical positions into shared vertices.
         #[arg(long)]
         weld: bool,
@@ -230,6 +238,8 @@ enum Connectivity {
     /// Constrained triangle strips with the adjacent-strips table: a rendering index list
     /// that also answers corner queries on the loaded file.
     Strips,
+    /// Bit-efficient Laced Ring: 16-bit offsets, random access on the loaded file.
+    LrCompact,
 }
 
 /// Maps a container file read-only.
@@ -294,6 +304,7 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
             weld,
             tries,
             seed,
+            period,
         } => {
             let mesh = load(&mesh, weld)?;
             let report = TopologyReport::of(&mesh);
@@ -304,12 +315,23 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
                 Lr::build(&table, &LrOptions { tries, seed })
             })?;
             let stats = LrStats::new(&lr, report.valence6_pct);
+            let compact = progress::step("building the bit-efficient LR", || {
+                CompactLr::build(
+                    &table,
+                    &CompactOptions {
+                        lr: LrOptions { tries, seed },
+                        periods: period.map_or(CompactOptions::default().periods, |k| vec![k]),
+                    },
+                )
+            })?
+            .stats();
             let edgebreaker =
                 progress::step("encoding Edgebreaker", || EdgebreakerStats::of(&table))?;
             let strips = progress::step("building strips", || StripStats::of(&mesh))?;
             if json {
                 let out = serde_json::json!({
                     "lr": stats,
+                    "lr_compact": compact,
                     "edgebreaker": edgebreaker,
                     "strips": strips,
                 });
@@ -319,6 +341,7 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
                 );
             } else {
                 show(&stats);
+                show(&compact);
                 show(&edgebreaker);
                 show(&strips);
             }
@@ -331,6 +354,7 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
             quantize,
             tries,
             seed,
+            period,
             weld,
         } => {
             let mesh = load(&input, weld)?;
@@ -339,8 +363,10 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
                     Connectivity::Lr => write::Connectivity::Lr,
                     Connectivity::Edgebreaker => write::Connectivity::Edgebreaker,
                     Connectivity::Strips => write::Connectivity::Strips,
+                    Connectivity::LrCompact => write::Connectivity::LrCompact,
                 },
                 lr: LrOptions { tries, seed },
+                periods: period.map_or(EncodeOptions::default().periods, |k| vec![k]),
                 keep_order,
                 quantize16: quantize.is_some(),
                 ..EncodeOptions::default()

@@ -11,12 +11,15 @@ use crate::corner_table::NONE;
 use crate::error::{Error, FormatError, Result};
 use crate::format::{self, geometry, kind, Tag, ENTRY_LEN, FLAG_REQUIRED, HEADER_LEN};
 use crate::ids::{Corner, Vertex};
-use crate::lr::{LeWords, LrLayout, LrTables, Words, IRREGULAR, NULL, VALUE, WART};
+use crate::lr::{
+    CompactTables, LeUnits, LeWords, LrLayout, LrTables, Words, IRREGULAR, NULL, VALUE, WART,
+};
 use crate::ops::CornerOps;
 use crate::strips::CtsTables;
 use crate::write::Metadata;
 use crate::Mesh;
 
+mod lr_compact;
 mod strips;
 
 /// Limits on what a reader accepts, beyond what the file's length bounds anyway.
@@ -249,7 +252,7 @@ impl<'a> Container<'a> {
 }
 
 /// The sections this reader understands.
-const KNOWN: [Tag; 12] = [
+const KNOWN: [Tag; 13] = [
     Tag::META,
     Tag::MESH,
     Tag::GEOM,
@@ -259,6 +262,7 @@ const KNOWN: [Tag; 12] = [
     Tag::LRTB,
     Tag::EBRK,
     Tag::STRP,
+    Tag::LRBE,
     Tag::COPY,
     Tag::KEPT,
     Tag::PERM,
@@ -290,6 +294,8 @@ pub enum ConnectivityView<'a> {
     /// Constrained triangle strips and the adjacent-strips table, answering the corner
     /// operators on the buffer.
     Strips(CtsTables<LeWords<'a>>),
+    /// Bit-efficient LR tables, answering the corner operators on the buffer.
+    LrCompact(CompactTables<LeWords<'a>, LeUnits<'a>>),
 }
 
 impl ConnectivityView<'_> {
@@ -299,6 +305,7 @@ impl ConnectivityView<'_> {
             ConnectivityView::Lr(_) => "lr",
             ConnectivityView::Edgebreaker(_) => "edgebreaker",
             ConnectivityView::Strips(_) => "strips",
+            ConnectivityView::LrCompact(_) => "lr-compact",
         }
     }
 
@@ -308,6 +315,7 @@ impl ConnectivityView<'_> {
             ConnectivityView::Lr(lr) => lr.triangles().count() as u64,
             ConnectivityView::Edgebreaker(triangles) => triangles.len() as u64,
             ConnectivityView::Strips(strips) => strips.triangle_count() as u64,
+            ConnectivityView::LrCompact(lr) => lr.triangles().count() as u64,
         }
     }
 
@@ -321,6 +329,9 @@ impl ConnectivityView<'_> {
             ConnectivityView::Strips(strips) => strips
                 .triangles()
                 .for_each(|t| f(strips.triangle_vertices(t).map(|v| v.0))),
+            ConnectivityView::LrCompact(lr) => lr
+                .triangles()
+                .for_each(|t| f(lr.triangle_vertices(t).map(|v| v.0))),
         }
     }
 }
@@ -433,7 +444,9 @@ impl<'a> MeshView<'a> {
         let triangles = mesh.u32(8)?;
         let kept_count = mesh.u32(12)?;
         let connectivity_kind = mesh.u32(16)?;
-        if ![kind::LR, kind::EDGEBREAKER, kind::STRIPS].contains(&connectivity_kind) {
+        if ![kind::LR, kind::EDGEBREAKER, kind::STRIPS, kind::LR_COMPACT]
+            .contains(&connectivity_kind)
+        {
             return Err(mesh.err(16, format!("unknown connectivity kind {connectivity_kind}")));
         }
         if mesh.u32(20)? != 0 {
@@ -492,6 +505,9 @@ impl<'a> MeshView<'a> {
         let connectivity = match connectivity_kind {
             kind::LR => ConnectivityView::Lr(lr_tables(&container, m)?),
             kind::STRIPS => ConnectivityView::Strips(strips::strips_tables(&container, m)?),
+            kind::LR_COMPACT => {
+                ConnectivityView::LrCompact(lr_compact::lr_compact_tables(&container, m)?)
+            }
             _ => ConnectivityView::Edgebreaker(edgebreaker_triangles(&container, m)?),
         };
         let held = connectivity.triangle_count();
@@ -603,6 +619,15 @@ impl<'a> MeshView<'a> {
     pub fn lr(&self) -> Option<&LrTables<LeWords<'a>>> {
         match &self.connectivity {
             ConnectivityView::Lr(lr) => Some(lr),
+            _ => None,
+        }
+    }
+
+    /// The bit-efficient LR tables, answering the corner operators on the buffer, when the
+    /// container holds them.
+    pub fn lr_compact(&self) -> Option<&CompactTables<LeWords<'a>, LeUnits<'a>>> {
+        match &self.connectivity {
+            ConnectivityView::LrCompact(lr) => Some(lr),
             _ => None,
         }
     }
@@ -859,62 +884,16 @@ fn lr_tables<'a>(container: &Container<'a>, m: u32) -> Result<LrTables<LeWords<'
     let word_err =
         |array: usize, i: usize, message: String| f.err(starts_of[array] + 4 * i, message);
     // Where a corner's triangle is stored: its LR entry, or its VO row.
-    let corner_err = |c: Corner, message: String| {
+    let corner_at = |c: Corner| {
         if c.0 >= 8 * m_r {
-            word_err(4, (c.0 - c.0 / 4 - 6 * m_r) as usize, message)
+            starts_of[4] + 4 * (c.0 - c.0 / 4 - 6 * m_r) as usize
         } else {
-            word_err(
-                3,
-                2 * (c.0 as usize >> 3) + ((c.0 as usize >> 2) & 1),
-                message,
-            )
+            starts_of[3] + 4 * (2 * (c.0 as usize >> 3) + ((c.0 as usize >> 2) & 1))
         }
     };
 
     // Rings: starts increasing by at least 4 from 0 to m_r; bits and ranks as derived.
-    if m_r > 0 {
-        let starts: Vec<u32> = (0..ring_starts.count())
-            .map(|i| ring_starts.at(i))
-            .collect();
-        for i in 0..starts.len() {
-            let ok = if i == 0 {
-                starts[0] == 0
-            } else {
-                starts[i] >= starts[i - 1].saturating_add(4)
-                    && (i + 1 < starts.len() || starts[i] == m_r)
-            };
-            if !ok {
-                return Err(word_err(
-                    0,
-                    i,
-                    format!("ring start {} breaks the ring rules", starts[i]),
-                ));
-            }
-        }
-        let (last, rank) = crate::lr::ring_bits(&starts);
-        for (i, &w) in last.iter().enumerate() {
-            if ring_last.at(i) != w {
-                return Err(word_err(
-                    1,
-                    i,
-                    "ring-end bits do not match the ring starts".into(),
-                ));
-            }
-            if ring_rank.at(i) != rank[i] {
-                return Err(word_err(
-                    2,
-                    i,
-                    "ring ranks do not match the ring-end bits".into(),
-                ));
-            }
-        }
-    } else if ring_starts.at(0) != 0 {
-        return Err(word_err(
-            0,
-            0,
-            "ring starts of an empty ring set must be [0]".into(),
-        ));
-    }
+    check_rings(&ring_starts, Some((&ring_last, &ring_rank)), m_r, word_err)?;
 
     let tables = LrTables {
         lr,
@@ -972,22 +951,6 @@ fn lr_tables<'a>(container: &Container<'a>, m: u32) -> Result<LrTables<LeWords<'
             format!("vertex {} out of range ({m} vertices)", vo_v.at(i)),
         ));
     }
-    // Slots the operators jump to from redundant and wart slots must hold canonical triangles.
-    for slot in 0..2 * m_r as usize {
-        let (v, side) = ((slot / 2) as u32, slot % 2);
-        if (tables.redundant(v, side) || tables.wart(v, side))
-            && !tables.slot_is_triangle(tables.ring_next(v), side)
-        {
-            return Err(word_err(
-                3,
-                slot,
-                format!(
-                    "slot {slot} points to slot {} which holds no canonical triangle",
-                    2 * tables.ring_next(v) as usize + side
-                ),
-            ));
-        }
-    }
     // Stored corners are canonical corners or NONE.
     let corner_ok = |x: u32| x == NONE || tables.is_corner(Corner(x));
     for (array, words) in [(5, vo_o), (6, vo_star), (7, c)] {
@@ -1004,6 +967,104 @@ fn lr_tables<'a>(container: &Container<'a>, m: u32) -> Result<LrTables<LeWords<'
         }
     }
 
+    check_lr_layout(&tables, &f, corner_at, |v| {
+        if v < m_r {
+            starts_of[3] + 8 * v as usize
+        } else {
+            starts_of[7] + 4 * (v - m_r) as usize
+        }
+    })?;
+    Ok(tables)
+}
+
+/// [V16] for any LR layout: ring starts increase by at least 4 from 0 to `m_r`, and the
+/// ring-end bits and ranks (when the layout stores them) are the ones the starts imply.
+/// `err(array, word, message)` locates an error in array 0 (starts), 1 (bits) or 2 (ranks).
+fn check_rings<W: Words>(
+    ring_starts: &W,
+    bits: Option<(&W, &W)>,
+    m_r: u32,
+    err: impl Fn(usize, usize, String) -> Error,
+) -> Result<()> {
+    if m_r == 0 {
+        return match ring_starts.at(0) {
+            0 => Ok(()),
+            _ => Err(err(
+                0,
+                0,
+                "ring starts of an empty ring set must be [0]".into(),
+            )),
+        };
+    }
+    let starts: Vec<u32> = (0..ring_starts.count())
+        .map(|i| ring_starts.at(i))
+        .collect();
+    for i in 0..starts.len() {
+        let ok = if i == 0 {
+            starts[0] == 0
+        } else {
+            starts[i] >= starts[i - 1].saturating_add(4)
+                && (i + 1 < starts.len() || starts[i] == m_r)
+        };
+        if !ok {
+            return Err(err(
+                0,
+                i,
+                format!("ring start {} breaks the ring rules", starts[i]),
+            ));
+        }
+    }
+    let Some((ring_last, ring_rank)) = bits else {
+        return Ok(());
+    };
+    let (last, rank) = crate::lr::ring_bits(&starts);
+    for (i, &w) in last.iter().enumerate() {
+        if ring_last.at(i) != w {
+            return Err(err(
+                1,
+                i,
+                "ring-end bits do not match the ring starts".into(),
+            ));
+        }
+        if ring_rank.at(i) != rank[i] {
+            return Err(err(
+                2,
+                i,
+                "ring ranks do not match the ring-end bits".into(),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The rules every LR layout must keep so that the operators answer valid ids and swings
+/// and contour walks terminate (spec/FORMAT.md [V19], [V21]–[V23]): slots that the
+/// operators jump to from redundant and wart slots hold canonical triangles; no canonical
+/// triangle is degenerate; `c.o` is an involution across the same edge; `v.c` is a corner
+/// of `v`. `corner_at` and `vertex_at` give the section offset that stores a corner's
+/// triangle and a vertex's corner, for errors.
+fn check_lr_layout<T: LrLayout>(
+    tables: &T,
+    f: &Fields,
+    corner_at: impl Fn(Corner) -> usize,
+    vertex_at: impl Fn(u32) -> usize,
+) -> Result<()> {
+    let m = tables.vertex_count();
+    let corner_err = |c: Corner, message: String| f.err(corner_at(c), message);
+    for slot in 0..2 * tables.ring_vertices() as usize {
+        let (v, side) = ((slot / 2) as u32, slot % 2);
+        if (tables.redundant(v, side) || tables.wart(v, side))
+            && !tables.slot_is_triangle(tables.ring_next(v), side)
+        {
+            return Err(corner_err(
+                Corner(8 * v + 4 * side as u32),
+                format!(
+                    "slot {slot} points to slot {} which holds no canonical triangle",
+                    2 * tables.ring_next(v) as usize + side
+                ),
+            ));
+        }
+    }
     // Behaviour: c.o is an involution across the same edge; v.c is a corner of v; triangles
     // are not degenerate. This makes swings and contour walks terminate.
     // c.o is an involution: each pair is checked once, from its smaller corner, and the pairs
@@ -1061,14 +1122,10 @@ fn lr_tables<'a>(container: &Container<'a>, m: u32) -> Result<LrTables<LeWords<'
                 "the corner of vertex {v} is a corner of vertex {}",
                 tables.vertex(c).0
             );
-            return Err(if v < m_r {
-                word_err(3, 2 * v as usize, message)
-            } else {
-                word_err(7, (v - m_r) as usize, message)
-            });
+            return Err(f.err(vertex_at(v), message));
         }
     }
-    Ok(tables)
+    Ok(())
 }
 
 /// One line of a container's section table, for reports.
@@ -1141,6 +1198,7 @@ impl MeshView<'_> {
         let connectivity_bytes = section_len(Tag::LRTB)
             + section_len(Tag::EBRK)
             + section_len(Tag::STRP)
+            + section_len(Tag::LRBE)
             + section_len(Tag::COPY)
             + section_len(Tag::KEPT);
         let triangles = self.triangles as u64 + (self.kept.count() / 3) as u64;
@@ -1152,6 +1210,7 @@ impl MeshView<'_> {
             }
         };
         let lr = self.lr();
+        let compact = self.lr_compact();
         let rpt = match &self.connectivity {
             ConnectivityView::Lr(lr) => {
                 let m_r = lr.ring_vertices();
@@ -1165,7 +1224,7 @@ impl MeshView<'_> {
             ConnectivityView::Strips(strips) => Some(per_triangle(
                 (2 * strips.len() as u64 + strips.vertex_id_bound() as u64) as f64,
             )),
-            ConnectivityView::Edgebreaker(_) => None,
+            ConnectivityView::Edgebreaker(_) | ConnectivityView::LrCompact(_) => None,
         };
         let mut attributes = Vec::new();
         for (present, name) in [
@@ -1201,9 +1260,15 @@ impl MeshView<'_> {
             triangles,
             kept_triangles: (self.kept.count() / 3) as u32,
             vertex_copies: (self.copies.count() / 2) as u32,
-            ring_vertices: lr.map(|lr| lr.ring_vertices()),
-            rings: lr.map(|lr| lr.ring_count() as u32),
-            t0_triangles: lr.map(|lr| lr.t0_count()),
+            ring_vertices: lr
+                .map(|lr| lr.ring_vertices())
+                .or(compact.map(|lr| lr.ring_vertices())),
+            rings: lr
+                .map(|lr| lr.ring_count() as u32)
+                .or(compact.map(|lr| lr.ring_count() as u32)),
+            t0_triangles: lr
+                .map(|lr| lr.t0_count())
+                .or(compact.map(|lr| lr.t0_count())),
             irregular_triangles: lr.map(|lr| lr.record_count()),
             connectivity_bytes,
             connectivity_bpt: per_triangle(8.0 * connectivity_bytes as f64),

@@ -12,7 +12,7 @@ use crate::edgebreaker;
 use crate::error::{Error, Result};
 use crate::format::{self, geometry, kind, Tag, ENTRY_LEN, FLAG_REQUIRED, HEADER_LEN};
 use crate::ids::{Triangle, Vertex};
-use crate::lr::{Lr, LrLayout, LrOptions};
+use crate::lr::{CompactLr, CompactOptions, Lr, LrLayout, LrOptions};
 use crate::ops::CornerOps;
 use crate::strips::{Cts, StripOptions};
 use crate::Mesh;
@@ -41,6 +41,9 @@ pub enum Connectivity {
     /// Constrained triangle strips with the adjacent-strips table (section `STRP`): a
     /// rendering index list that also answers corner queries on the buffer.
     Strips,
+    /// Bit-efficient LR (section `LRBE`): about 16 bits per triangle plus the irregular
+    /// ones, corner queries on the buffer.
+    LrCompact,
 }
 
 /// How to encode.
@@ -50,6 +53,9 @@ pub struct EncodeOptions {
     pub connectivity: Connectivity,
     /// Options of the LR construction.
     pub lr: LrOptions,
+    /// Periods of HYBRID-RING-EXPANDER tried for [`Connectivity::LrCompact`] (0: depth
+    /// first); the smallest result is stored.
+    pub periods: Vec<u32>,
     /// Options of the stripper, for [`Connectivity::Strips`] (fans are never used).
     pub strips: StripOptions,
     /// Store the permutations back to the input's vertex and triangle order.
@@ -65,6 +71,7 @@ impl Default for EncodeOptions {
         EncodeOptions {
             connectivity: Connectivity::Lr,
             lr: LrOptions::default(),
+            periods: CompactOptions::default().periods,
             strips: StripOptions::default(),
             keep_order: false,
             quantize16: false,
@@ -166,6 +173,49 @@ fn encode_edgebreaker(table: &CornerTable) -> Result<Encoded> {
     })
 }
 
+fn encode_lr_compact(table: &CornerTable, options: &CompactOptions) -> Result<Encoded> {
+    let lr = CompactLr::build(table, options)?;
+    let t = lr.tables();
+    let mut p = Payload::default();
+    p.u32s([
+        t.m,
+        t.m_r,
+        t.ring_count() as u32,
+        t.t0_count(),
+        t.record_units(),
+        t.overflow_rows(),
+        lr.period(),
+        0,
+    ]);
+    for words in [
+        &t.ring_starts,
+        &t.ring_last,
+        &t.ring_rank,
+        &t.pairs,
+        &t.blocks,
+        &t.groups,
+        &t.c,
+        &t.overflow,
+    ] {
+        p.u32s(words.iter().copied());
+    }
+    for units in [&t.t0, &t.records] {
+        for &u in units.iter() {
+            p.0.extend_from_slice(&u.to_le_bytes());
+        }
+    }
+    debug_assert_eq!(p.0.len() as u64, lr.stored_bytes());
+    Ok(Encoded {
+        kind: kind::LR_COMPACT,
+        tag: Tag::LRBE,
+        payload: p.0,
+        input_vertex: (0..t.vertex_id_bound())
+            .map(|v| lr.input_vertex(Vertex(v)))
+            .collect(),
+        input_triangle: t.triangles().map(|tri| lr.input_triangle(tri)).collect(),
+    })
+}
+
 fn encode_strips(table: &CornerTable, options: &StripOptions) -> Result<Encoded> {
     let cts = Cts::build(table, options)?;
     let mut p = Payload::default();
@@ -194,6 +244,13 @@ pub fn encode(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<u8>> {
         Connectivity::Lr => encode_lr(&table, &options.lr)?,
         Connectivity::Edgebreaker => encode_edgebreaker(&table)?,
         Connectivity::Strips => encode_strips(&table, &options.strips)?,
+        Connectivity::LrCompact => encode_lr_compact(
+            &table,
+            &CompactOptions {
+                lr: options.lr,
+                periods: options.periods.clone(),
+            },
+        )?,
     };
     let m = encoded.input_vertex.len() as u32;
     let per_vertex = |v: u32| encoded.input_vertex[v as usize] as usize;

@@ -8,18 +8,20 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use lrmesh::lr::LrLayout;
 use lrmesh::io::{read_mesh, ReadOptions};
+use lrmesh::lr::LrLayout;
 use lrmesh::read::ConnectivityView;
 use lrmesh::read::{open, Limits};
 use lrmesh::write::{encode, Connectivity, EncodeOptions, Metadata};
 use lrmesh::CornerOps;
 
-const VECTORS: [&str; 4] = [
+const VECTORS: [&str; 5] = [
     "closed_tetrahedron",
     "boundary_hedra_open",
     "two_components",
     "nonmanifold_vertex",
+    // A torus whose LR has T0 triangles and irregular slots (records, T0 rows).
+    "torus_with_t0",
 ];
 
 fn dir() -> PathBuf {
@@ -58,6 +60,27 @@ fn listing(name: &str, bytes: &[u8]) -> String {
                 lr.vertex_id_bound(),
                 view.triangle_count(),
                 lr.ring_vertices()
+            )
+            .unwrap();
+            writeln!(out, "# corner vertex opposite").unwrap();
+            for c in lr.corners() {
+                let o = lr.opposite(c).map_or("-".to_string(), |o| o.0.to_string());
+                writeln!(out, "{} {} {o}", c.0, lr.vertex(c).0).unwrap();
+            }
+        }
+        ConnectivityView::LrCompact(lr) => {
+            writeln!(
+                out,
+                "# lrmesh test vector {name}: the vertex and opposite of every corner"
+            )
+            .unwrap();
+            writeln!(
+                out,
+                "# {} vertices, {} triangles, {} ring vertices, {} T0 rows",
+                lr.vertex_id_bound(),
+                view.triangle_count(),
+                lr.ring_vertices(),
+                lr.t0_count()
             )
             .unwrap();
             writeln!(out, "# corner vertex opposite").unwrap();
@@ -112,6 +135,7 @@ fn vectors_match() {
             (Connectivity::Lr, ""),
             (Connectivity::Edgebreaker, ".edgebreaker"),
             (Connectivity::Strips, ".strips"),
+            (Connectivity::LrCompact, ".lr-compact"),
         ] {
             let source = dir().join(format!("{name}.off"));
             let mesh = read_mesh(&source, &ReadOptions::default()).unwrap().mesh;

@@ -31,8 +31,6 @@ use crate::error::{Error, Result};
 use crate::ids::{Corner, Triangle, Vertex};
 use crate::ops::CornerOps;
 
-/// Bytes of the `LRBE` section header.
-pub const HEADER_LEN: usize = 32;
 /// Ring vertices per block: `v >> BLOCK_SHIFT` is the block of `v`.
 pub const BLOCK_SHIFT: u32 = 10;
 /// T0 rows per group: `j >> GROUP_SHIFT` is the group of row `j`.
@@ -214,6 +212,32 @@ impl<W: Words, U: Units> CompactTables<W, U> {
         } else {
             8u32.wrapping_mul(ring_reference).wrapping_add_signed(d)
         }
+    }
+
+    /// The units of the record of extended pair `v`, or `None` when they run past the
+    /// record units. Reads only units it has checked exist (for validation).
+    pub(crate) fn record_len(&self, v: u32) -> Option<usize> {
+        let p = self.pair(v);
+        let block = (v >> BLOCK_SHIFT) as usize;
+        let start = self.blocks.at(2 * block) as usize + ((p >> RECORD_SHIFT) & 0x7FFF) as usize;
+        let n = self.records.count();
+        let head = *(start < n).then(|| self.records.at(start)).as_ref()?;
+        let mut at = start + 1;
+        if p & 0x7FFF == 0 {
+            at += 2;
+        }
+        if head >> 6 == RIGHT_LONG {
+            at += 2;
+        }
+        for q in 0..4 {
+            if head >> (2 + q) & 1 != 0 {
+                if at >= n {
+                    return None;
+                }
+                at += corner_width(self.records.at(at));
+            }
+        }
+        (at <= n).then_some(at - start)
     }
 
     /// Number of T0 overflow rows.
@@ -446,7 +470,7 @@ fn stored_bytes<W: Words, U: Units>(t: &CompactTables<W, U>) -> u64 {
         + t.c.count()
         + t.overflow.count();
     let units = t.t0.count() + t.records.count();
-    HEADER_LEN as u64 + 4 * words as u64 + 2 * units as u64
+    crate::format::LRBE_HEADER_LEN as u64 + 4 * words as u64 + 2 * units as u64
 }
 
 impl CompactLr {
