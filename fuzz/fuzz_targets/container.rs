@@ -5,6 +5,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
+use lrmesh::lr::LrLayout;
 use lrmesh::ops::{self, CornerOps, Plane};
 use lrmesh::read::{open, Limits};
 use lrmesh::{Corner, Vertex};
