@@ -1,6 +1,6 @@
 //! One-run comparison of the connectivity representations (`lrmesh bench`, and the `lr`
-//! bench): corner table, standard LR (owned, and the zero-copy view of the `.lrm` bytes),
-//! compact (bit-efficient) LR, Edgebreaker and constrained strips. Size, build and open
+//! bench): corner table, standard and compact (bit-efficient) LR (each owned, and as the
+//! zero-copy view of the `.lrm` bytes), Edgebreaker and constrained strips. Size, build and open
 //! times, and the loops of the LR paper's Fig. 10 (c.v and c.o over every corner, valence and
 //! normal of every vertex, contour walks) as ratios to the corner table, all timed in the same
 //! process with [`std::time::Instant`], each step the median of several runs.
@@ -196,10 +196,10 @@ impl LoopFigures {
 
 /// The comparison of [`run`]: one row per representation, the corner table first.
 ///
-/// Build times: the corner table from the mesh; owned LR, compact LR (every period of
+/// Build times: the corner table from the mesh; owned LR, owned compact LR (every period of
 /// [`CompactOptions`], the smallest kept), Edgebreaker and strips from the corner table; the
-/// LR view's is the whole container's encoding from the mesh ([`write::encode`]). Open times:
-/// [`read::open`] (validation) for the LR view, decoding for Edgebreaker.
+/// views' is the whole container's encoding from the mesh ([`write::encode`]). Open times:
+/// [`read::open`] (validation) for the views, decoding for Edgebreaker.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct BenchReport {
     /// Vertices of the mesh as read.
@@ -313,7 +313,7 @@ pub fn run(
         ));
     }
 
-    progress("compact LR (bit-efficient)");
+    progress("compact LR (owned)");
     let compact_options = CompactOptions {
         lr: options.lr,
         ..CompactOptions::default()
@@ -328,13 +328,40 @@ pub fn run(
         .collect();
     let compact_loops = fig10_loops(compact.tables(), &compact_positions, runs);
     rows.push(row(
-        "compact LR",
+        "compact LR (owned)",
         compact.stored_bytes(),
         n,
         Some(compact_build),
         None,
         Some((&compact_loops, &ct_loops)),
     ));
+
+    progress("compact LR (view of the .lrm bytes)");
+    let compact_encode = EncodeOptions {
+        connectivity: write::Connectivity::LrCompact,
+        lr: options.lr,
+        ..EncodeOptions::default()
+    };
+    let bytes = write::encode(mesh, &compact_encode)?;
+    let encode_time = median_time(runs, || write::encode(mesh, &compact_encode));
+    let view = read::open(&bytes, &limits)?;
+    let open_time = median_time(runs, || {
+        read::open(&bytes, &limits).map(|v| v.triangle_count())
+    });
+    if let Some(tables) = view.lr_compact() {
+        let positions: Vec<[f32; 3]> = (0..tables.vertex_id_bound())
+            .map(|v| view.position(Vertex(v)))
+            .collect();
+        let view_loops = fig10_loops(tables, &positions, runs);
+        rows.push(row(
+            "compact LR (view)",
+            view.summary().connectivity_bytes,
+            n,
+            Some(encode_time),
+            Some(open_time),
+            Some((&view_loops, &ct_loops)),
+        ));
+    }
 
     progress("Edgebreaker");
     let eb = edgebreaker::encode(&table)?;
@@ -382,7 +409,7 @@ impl std::fmt::Display for BenchReport {
         )?;
         writeln!(
             f,
-            "{:<16} {:>11} {:>9} {:>10} {:>10} {:>7} {:>7} {:>8} {:>8} {:>8}",
+            "{:<20} {:>11} {:>9} {:>10} {:>10} {:>7} {:>7} {:>8} {:>8} {:>8}",
             "representation",
             "bytes",
             "bits/tri",
@@ -402,7 +429,7 @@ impl std::fmt::Display for BenchReport {
             let l = r.loops.map(|l| l.to_array());
             writeln!(
                 f,
-                "{:<16} {:>11} {:>9.2} {} {} {} {} {} {} {}",
+                "{:<20} {:>11} {:>9.2} {} {} {} {} {} {} {}",
                 r.name,
                 r.bytes,
                 r.bits_per_triangle,
@@ -427,9 +454,9 @@ impl std::fmt::Display for BenchReport {
         writeln!(f, ")")?;
         writeln!(
             f,
-            "build: corner table from the mesh; LR (owned), compact LR, Edgebreaker, CTS \
-             from the corner table; LR (view) encodes the whole .lrm from the mesh. open: \
-             validation of the .lrm (LR view), decoding (Edgebreaker)"
+            "build: corner table from the mesh; owned LRs, Edgebreaker, CTS from the corner \
+             table; views: the whole .lrm encoded from the mesh. open: validation of the .lrm \
+             (views), decoding (Edgebreaker)"
         )
     }
 }

@@ -481,17 +481,24 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
                 let bytes = map(&mesh)?;
                 let view =
                     read::open(&bytes, &Limits::default()).map_err(|e| e.with_file(&mesh))?;
-                let lr = view.lr().ok_or_else(|| {
-                    Error::InvalidMesh(format!(
-                        "{}: render needs LR connectivity, the file holds {}",
+                let positions = |bound: u32| -> Vec<[f32; 3]> {
+                    (0..bound)
+                        .map(|v| view.position(lrmesh::Vertex(v)))
+                        .collect()
+                };
+                if let Some(lr) = view.lr() {
+                    let positions = positions(lr.vertex_id_bound());
+                    progress::step("rendering", || render::render(lr, &positions, &options))?
+                } else if let Some(lr) = view.lr_compact() {
+                    let positions = positions(lr.vertex_id_bound());
+                    progress::step("rendering", || render::render(lr, &positions, &options))?
+                } else {
+                    return Err(Error::InvalidMesh(format!(
+                        "{}: render needs LR connectivity (lr or lr-compact), the file holds {}",
                         mesh.display(),
                         view.summary().connectivity
-                    ))
-                })?;
-                let positions: Vec<[f32; 3]> = (0..lr.vertex_id_bound())
-                    .map(|v| view.position(lrmesh::Vertex(v)))
-                    .collect();
-                progress::step("rendering", || render::render(lr, &positions, &options))?
+                    )));
+                }
             } else {
                 let input = load(&mesh, weld)?;
                 let table = progress::step("building the corner table", || {
