@@ -32,7 +32,7 @@ use crate::ids::{Corner, Triangle, Vertex};
 use crate::ops::CornerOps;
 
 /// Ring vertices per block: `v >> BLOCK_SHIFT` is the block of `v`.
-pub const BLOCK_SHIFT: u32 = 10;
+pub const BLOCK_SHIFT: u32 = 8;
 /// T0 rows per group: `j >> GROUP_SHIFT` is the group of row `j`.
 pub const GROUP_SHIFT: u32 = 6;
 /// Units per T0 row.
@@ -47,11 +47,18 @@ pub const WART_LEFT: u32 = 1;
 pub const WART_RIGHT: u32 = 2;
 /// Configuration: the pair has a record.
 pub const EXTENDED: u32 = 3;
-/// Extended pair word: the record's start relative to its block's first record (bits
-/// 15–29).
-const RECORD_SHIFT: u32 = 15;
-/// Record head: the right tip's 10-bit pattern for "long, in the record".
-const RIGHT_LONG: u16 = 0x200;
+/// Extended pair word: bits 0–12 the left tip's 13-bit offset (0: long, in the record),
+/// bits 13–25 the record's start relative to its block's first record, bits 26–29 the
+/// IRREGULAR flags (left, right) and the WART flags (left, right).
+const RECORD_SHIFT: u32 = 13;
+const FIELD13: u32 = 0x1FFF;
+const X_IRREGULAR: [u32; 2] = [1 << 26, 1 << 27];
+const X_WART: [u32; 2] = [1 << 28, 1 << 29];
+/// Record head: bits 0–3 which transversal corners have a stored opposite (left 0, left 2,
+/// right 4, right 6); bits 4–15 the right tip's 12-bit offset (0: `NULL`; `RIGHT_LONG`:
+/// long, in the record).
+const HEAD_TIP_SHIFT: u32 = 4;
+const RIGHT_LONG: u16 = 0x800;
 /// T0 row codes of an opposite.
 const BY_LEFT_RULE: u16 = 0;
 const BY_RIGHT_RULE: u16 = 1;
@@ -104,10 +111,16 @@ fn short15(unit: u32) -> i32 {
     ((unit as i32) << 17) >> 17
 }
 
-/// Sign-extends the low 10 bits.
+/// Sign-extends the low 13 bits.
 #[inline(always)]
-fn short10(bits: u16) -> i32 {
-    ((bits as i32) << 22) >> 22
+fn short13(bits: u32) -> i32 {
+    ((bits as i32) << 19) >> 19
+}
+
+/// Sign-extends the low 12 bits.
+#[inline(always)]
+fn short12(bits: u16) -> i32 {
+    ((bits as i32) << 20) >> 20
 }
 
 /// Units of the corner field starting with `unit`.
@@ -173,14 +186,14 @@ impl<W: Words, U: Units> CompactTables<W, U> {
     #[inline(always)]
     fn record(&self, v: u32, p: u32) -> Record {
         let block = (v >> BLOCK_SHIFT) as usize;
-        let start = self.blocks.at(2 * block) as usize + ((p >> RECORD_SHIFT) & 0x7FFF) as usize;
+        let start = self.blocks.at(2 * block) as usize + ((p >> RECORD_SHIFT) & FIELD13) as usize;
         let head = self.records.at(start);
         let mut at = start + 1;
-        let left_long = (p & 0x7FFF == 0).then(|| {
+        let left_long = (p & FIELD13 == 0).then(|| {
             at += 2;
             at - 2
         });
-        let right_long = (head >> 6 == RIGHT_LONG).then(|| {
+        let right_long = (head >> HEAD_TIP_SHIFT == RIGHT_LONG).then(|| {
             at += 2;
             at - 2
         });
@@ -219,18 +232,18 @@ impl<W: Words, U: Units> CompactTables<W, U> {
     pub(crate) fn record_len(&self, v: u32) -> Option<usize> {
         let p = self.pair(v);
         let block = (v >> BLOCK_SHIFT) as usize;
-        let start = self.blocks.at(2 * block) as usize + ((p >> RECORD_SHIFT) & 0x7FFF) as usize;
+        let start = self.blocks.at(2 * block) as usize + ((p >> RECORD_SHIFT) & FIELD13) as usize;
         let n = self.records.count();
         let head = *(start < n).then(|| self.records.at(start)).as_ref()?;
         let mut at = start + 1;
-        if p & 0x7FFF == 0 {
+        if p & FIELD13 == 0 {
             at += 2;
         }
-        if head >> 6 == RIGHT_LONG {
+        if head >> HEAD_TIP_SHIFT == RIGHT_LONG {
             at += 2;
         }
         for q in 0..4 {
-            if head >> (2 + q) & 1 != 0 {
+            if head >> q & 1 != 0 {
                 if at >= n {
                     return None;
                 }
@@ -335,7 +348,7 @@ impl<W: Words, U: Units> LrLayout for CompactTables<W, U> {
             };
         }
         if side == LEFT {
-            match short15(p) {
+            match short13(p) {
                 0 => self.long_at(self.record(v, p).left_long.unwrap_or(0)),
                 d => v.wrapping_add_signed(d),
             }
@@ -343,7 +356,7 @@ impl<W: Words, U: Units> LrLayout for CompactTables<W, U> {
             let r = self.record(v, p);
             match r.right_long {
                 Some(at) => self.long_at(at),
-                None => match short10(r.head >> 6) {
+                None => match short12(r.head >> HEAD_TIP_SHIFT) {
                     0 => NULL,
                     d => v.wrapping_add_signed(d),
                 },
@@ -355,7 +368,7 @@ impl<W: Words, U: Units> LrLayout for CompactTables<W, U> {
     fn wart(&self, v: u32, side: usize) -> bool {
         let p = self.pair(v);
         match p >> 30 {
-            EXTENDED => self.record(v, p).head >> side & 1 != 0,
+            EXTENDED => p & X_WART[side] != 0,
             config => config == WART_LEFT + side as u32,
         }
     }
@@ -363,17 +376,17 @@ impl<W: Words, U: Units> LrLayout for CompactTables<W, U> {
     #[inline(always)]
     fn irregular(&self, v: u32, side: usize) -> bool {
         let p = self.pair(v);
-        p >> 30 == EXTENDED && self.record(v, p).head >> (2 + 2 * side) & 3 != 0
+        p >> 30 == EXTENDED && p & X_IRREGULAR[side] != 0
     }
 
     #[inline(always)]
     fn stored_opposite(&self, v: u32, side: usize, second: usize) -> Option<u32> {
         let p = self.pair(v);
-        if p >> 30 != EXTENDED {
+        if p >> 30 != EXTENDED || p & X_IRREGULAR[side] == 0 {
             return None;
         }
         let r = self.record(v, p);
-        let flags = (r.head >> 2) & 0xF;
+        let flags = r.head & 0xF;
         let q = 2 * side + second;
         if flags >> q & 1 == 0 {
             return None;
@@ -578,22 +591,34 @@ impl CompactLr {
                 }
             }
             let relative = records.len() as u32 - block_words[2 * block];
-            let left = offsets[LEFT].map_or(0, |l| l as u32 & 0x7FFF);
-            pairs.push(EXTENDED << 30 | relative << RECORD_SHIFT | left);
+            let left = match tips[LEFT] as i64 - v as i64 {
+                d if d != 0 && d.abs() <= (FIELD13 >> 1) as i64 => Some(d as u32 & FIELD13),
+                _ => None,
+            };
+            let mut word = EXTENDED << 30 | relative << RECORD_SHIFT | left.unwrap_or(0);
+            for side in [LEFT, RIGHT] {
+                if warts[side] {
+                    word |= X_WART[side];
+                }
+                if stored[2 * side].is_some() || stored[2 * side + 1].is_some() {
+                    word |= X_IRREGULAR[side];
+                }
+            }
+            pairs.push(word);
             let right = match tips[RIGHT] {
                 NULL => Some(0),
                 tip => {
                     let d = tip as i64 - v as i64;
-                    (d != 0 && d.abs() < RIGHT_LONG as i64).then_some(d as u16 & 0x3FF)
+                    (d != 0 && d.abs() < RIGHT_LONG as i64).then_some(d as u16 & 0xFFF)
                 }
             };
-            let mut head = warts[LEFT] as u16 | (warts[RIGHT] as u16) << 1;
+            let mut head = 0u16;
             for (q, o) in stored.iter().enumerate() {
-                head |= (o.is_some() as u16) << (2 + q);
+                head |= (o.is_some() as u16) << q;
             }
-            head |= right.unwrap_or(RIGHT_LONG) << 6;
+            head |= right.unwrap_or(RIGHT_LONG) << HEAD_TIP_SHIFT;
             records.push(head);
-            if offsets[LEFT].is_none() {
+            if left.is_none() {
                 records.extend([tips[LEFT] as u16, (tips[LEFT] >> 16) as u16]);
             }
             if right.is_none() {
@@ -607,7 +632,7 @@ impl CompactLr {
                     None => records.extend([ESCAPE, o as u16, (o >> 16) as u16]),
                 }
             }
-            if relative > 0x7FFF {
+            if relative > FIELD13 {
                 return Err(Error::InvalidMesh("LR record block overflow".into()));
             }
         }
