@@ -37,7 +37,11 @@ fn soup(u: &mut Unstructured) -> Result<(Mesh, EncodeOptions)> {
         mesh.colors = Some((0..vertices).map(|v| [v as u8, 7, 9, 255]).collect());
     }
     let options = EncodeOptions {
-        connectivity: if u.arbitrary()? { Connectivity::Edgebreaker } else { Connectivity::Lr },
+        connectivity: match u.int_in_range(0..=2u8)? {
+            0 => Connectivity::Lr,
+            1 => Connectivity::Edgebreaker,
+            _ => Connectivity::Strips,
+        },
         lr: LrOptions {
             tries: u.int_in_range(1..=4)?,
             seed: u.arbitrary()?,
