@@ -253,6 +253,42 @@ impl<W: ChainWord> State<W> {
         self.glue3(a, (g.wrapping_add(2), g, g.wrapping_add(1)))
     }
 
+    /// [`State::glue_new`] for a triangle just created, whose corners are still chains of
+    /// one corner: the first chain join needs no load on the new side.
+    #[inline(always)]
+    fn glue_fresh(&mut self, c: u32, k: u32, g: u32) -> Step {
+        let (pa, a, na) = if k == 1 {
+            (c, c + 1, c + 2)
+        } else {
+            (c + 1, c + 2, c)
+        };
+        let (pb, b, nb) = (g.wrapping_add(2), g, g.wrapping_add(1));
+        let len = self.slots.len();
+        if a as usize >= len || b as usize >= len {
+            return Err("gate out of range");
+        }
+        let (pai, pbi) = (pa as usize, pb as usize);
+        if pai >= len || pbi >= len || self.slots[pai].d1 != NONE || self.slots[pbi].d1 != NONE {
+            return Err("edge glued twice");
+        }
+        self.slots[pai].d1 = nb;
+        let ea = self.slots[pbi].chain;
+        self.slots[pbi].d1 = na;
+        // `link(pb, na)`, `na` being a chain of one corner.
+        let a0 = ea.end();
+        if a0 != na {
+            let l = (ea.len() + 1).min(FAN_CAP);
+            if let Some(e) = self.slots.get_mut(a0 as usize) {
+                e.chain = W::entry(na, l);
+            }
+            if let Some(e) = self.slots.get_mut(na as usize) {
+                e.chain = W::entry(a0, l);
+            }
+        }
+        self.link(pa, nb);
+        Ok(())
+    }
+
     /// A new triangle: three chains of one corner.
     #[inline(always)]
     fn create(&mut self, t: u32) {
@@ -496,7 +532,7 @@ fn split<B: Bits, K: Known, W: ChainWord>(
 ) -> Result<()> {
     let c = 3 * t;
     let at = |b: &B, m: &str| malformed(b.offset(), m.to_string());
-    st.glue_new(c, 1, active).map_err(|m| at(b, m))?;
+    st.glue_fresh(c, 1, active).map_err(|m| at(b, m))?;
     let len = k.hole(t);
     let len = model
         .code_hole(b, len)
@@ -587,7 +623,7 @@ fn run<B: Bits, K: Known, W: ChainWord>(
                 hi -= 1;
                 next_handle = handle_at(hi);
                 model.push(sym::S);
-                check!(st.glue_new(c, 1, active));
+                check!(st.glue_fresh(c, 1, active));
                 let partner = st.opposite(c + 2);
                 st.merge_edge(c + 2, partner);
             } else {
@@ -595,18 +631,18 @@ fn run<B: Bits, K: Known, W: ChainWord>(
                 let n = &mut model.nodes[st.fans(active) * HIST + model.hist];
                 if b.bit(&mut n[0], (s != sym::C) as u32) == 0 {
                     model.push(sym::C);
-                    check!(st.glue_new(c, 1, active));
+                    check!(st.glue_fresh(c, 1, active));
                     let id = check!(st.take_id());
                     check!(st.close_star(c, c + 1, id));
                 } else if b.bit(&mut n[1], (s != sym::R) as u32) == 0 {
                     model.push(sym::R);
-                    check!(st.glue_new(c, 2, active));
+                    check!(st.glue_fresh(c, 2, active));
                 } else if b.bit(&mut n[2], (s != sym::S) as u32) == 0 {
                     model.push(sym::S);
                     split(b, k, &mut st, &mut model, &mut stack, t, active, &mut tally)?;
                 } else if b.bit(&mut n[3], (s != sym::L) as u32) == 0 {
                     model.push(sym::L);
-                    check!(st.glue_new(c, 1, active));
+                    check!(st.glue_fresh(c, 1, active));
                 } else {
                     model.push(sym::E);
                     stack.push(active);
