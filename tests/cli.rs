@@ -85,6 +85,23 @@ fn stats_json_has_lr_keys() {
     ] {
         assert!(stats["strips"].get(key).is_some(), "missing strips.{key}");
     }
+    for key in [
+        "k",
+        "isolated_vertices",
+        "t0_pct",
+        "t0w_pct",
+        "t1i_pct",
+        "t2i_pct",
+        "bpt",
+    ] {
+        assert!(
+            stats["lr_compact"].get(key).is_some(),
+            "missing lr_compact.{key}"
+        );
+    }
+    // knot1 is regular: the bit-efficient LR stays close to 16 bits per triangle.
+    let bpt = stats["lr_compact"]["bpt"].as_f64().unwrap();
+    assert!(bpt > 15.0 && bpt < 18.0, "lr_compact.bpt {bpt}");
 }
 
 #[test]

@@ -1,26 +1,29 @@
-//! The bit-efficient LR (section 6 of the LR paper; byte layout in `spec/FORMAT.md` §3.5d):
-//! the slots, T0 triangles and rings of a standard LR, stored in 16-bit units.
+//! The bit-efficient LR (section 6 of the LR paper; byte layout in `spec/FORMAT.md` §3.5d,
+//! decoding in `spec/OPERATORS.md` §7): the slots, T0 triangles and rings of a standard LR,
+//! in 16-bit units.
 //!
 //! - Each ring vertex `v` has one 32-bit **pair word** for its two slots. Its top two bits
 //!   choose a configuration: two plain slots, a wart on the left, a wart on the right, or
 //!   *extended*. A plain pair holds both tips as 15-bit signed offsets `tip - v`
 //!   (HYBRID-RING-EXPANDER keeps them small, section 6.1); offset 0 on the right is `NULL`.
-//! - An extended pair keeps its left tip offset and points to a **record**: a head unit with
-//!   the wart flags, one flag per transversal corner whose opposite is stored, and the right
-//!   tip in 10 bits; then tips too far for their short form (the paper's long references);
-//!   then the stored opposites. *Beyond the paper:* only the opposites that the ring rules
-//!   cannot infer are stored (usually one per irregular triangle, not two), as 16-bit fields.
+//! - An extended pair word holds the WART and IRREGULAR flags of both sides (so that the
+//!   operators' frequent flag checks never leave the word), the left tip in 13 bits, and where
+//!   its **record** starts. The record's head says which transversal corners have a stored
+//!   opposite and holds the right tip in 12 bits; then come the tips too far for their short
+//!   form (the paper's long references), then the stored opposites. *Beyond the paper:* only
+//!   the opposites that the ring rules cannot infer are stored (usually one per irregular
+//!   triangle, not two), as 16-bit fields.
 //! - A **corner field** is one unit holding a 15-bit signed difference, or three units
 //!   holding the absolute corner. A tag bit tells ring corners (relative to `8·v`) from T0
 //!   corners (relative to the first corner of a nearby T0 row).
-//! - **T0 rows** are 5 units, sorted by their *anchor* (their smallest ring vertex, which
-//!   becomes corner 0): the anchor relative to its group of 64 rows, the other two vertices
-//!   relative to it, and a 2-bit code per corner: the opposite is found by the left-slot
-//!   rule, by the right-slot rule (the same searches the ring corners use, OPERATORS.md §4),
-//!   is stored in the row's last unit, or is `NONE`. Rows that do not fit this move to a
-//!   32-bit overflow row.
-//! - Per block of 1024 ring vertices: where the block's first record starts, and how many T0
-//!   rows are anchored before the block (the reference of T0 corner fields in records).
+//! - **T0 rows** are 4 units: the anchor (the smallest ring vertex, which becomes corner 0)
+//!   relative to its group of 64 rows, the other two vertices relative to it, and a 2-bit code
+//!   per corner: the opposite is found by the left-slot rule, by the right-slot rule (the
+//!   searches the ring corners use), in the row before or after (T0 neighbours are placed
+//!   next to each other), or is `NONE`. *Beyond the paper*, which stores 192 bits per T0.
+//!   Rows that do not fit this move to a 32-bit overflow row.
+//! - Per block of 256 ring vertices: where the block's first record starts, and the first T0
+//!   row anchored in it (the reference of T0 corner fields in its records).
 //!
 //! The operators are those of [`LrLayout`]; this module only encodes and decodes.
 

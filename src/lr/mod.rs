@@ -8,7 +8,7 @@
 //!   get ids `0..m_r` in ring order; isolated vertices `m_r..m`. *Deviation:* every component
 //!   gets its own ring, numbered one after the other, so `v.n` is `v + 1` except at the last
 //!   vertex of a ring, which wraps to its ring's first (found in constant time through
-//!   [`Rings`]). A ring of three vertices (a component of one or two triangles) is not kept:
+//!   the ring-end bit vector). A ring of three vertices (a component of one or two triangles) is not kept:
 //!   its vertices become isolated and its triangles T0, which spares every operator the
 //!   special case of a triangle with three ring edges.
 //! - Ring edge `(v, v.n)` has a **left** triangle `2v = (v, L[v], v.n)` with corners
@@ -37,7 +37,9 @@
 //! Entries are 32 bits: bit 31 IRREGULAR, bit 30 WART, bits 0–29 a vertex id, `NULL`, or a
 //! VO* record index. So a mesh may have up to `2^30 - 2` vertices.
 //!
-//! The operators are written once, in [`LrTables`], for any storage of the tables.
+//! The operators are written once, in [`LrLayout`], for any encoding of the tables: the
+//! standard [`LrTables`] (owned, or on a container's bytes) and the bit-efficient
+//! [`CompactTables`] of section 6 ([`compact`]), built by [`CompactLr`].
 
 mod build;
 pub mod compact;
