@@ -27,14 +27,17 @@ use crate::generate::Rng;
 /// since, newest first: exactly the order of the paper's doubly-linked lists filled back to
 /// front and relinked at the head, without touching any neighbour's links.
 ///
-/// The first part is a cursor over the triangle order, the second a stack. A triangle whose
+/// The first part is a cursor over the triangles that start with degree `d` (collected in one
+/// pass for `d < 3`; all triangles for `d = 3`), the second a stack. A triangle whose
 /// degree drops is pushed onto the lower stack; its entry in the higher list goes stale (its
 /// state no longer names that list) and is skipped when it comes up. Degrees only fall, so a
 /// triangle enters each stack at most once, and when a stack is empty every triangle whose
 /// state names the list was there from the start, so the cursor finds the head.
 struct Lists {
     stacks: [Vec<u32>; 4],
-    /// Next position of the rotated triangle order to look at, per list.
+    /// The triangles of degree 0, 1 and 2 at the start, in rotated triangle order.
+    initial: [Vec<u32>; 3],
+    /// Next position to look at: in `initial[d]`, or for `d = 3` in the rotated order.
     cursor: [u32; 4],
     n: u32,
     offset: u32,
@@ -77,13 +80,22 @@ impl Lists {
                 }
                 self.stacks[d].pop();
             }
-            while self.cursor[d] < self.n {
-                let k = self.cursor[d] + self.offset;
-                let t = if k >= self.n { k - self.n } else { k };
-                if state[t as usize] == d as u8 {
-                    return Some(t);
+            if d < 3 {
+                while let Some(&t) = self.initial[d].get(self.cursor[d] as usize) {
+                    if state[t as usize] == d as u8 {
+                        return Some(t);
+                    }
+                    self.cursor[d] += 1;
                 }
-                self.cursor[d] += 1;
+            } else {
+                while self.cursor[3] < self.n {
+                    let k = self.cursor[3] + self.offset;
+                    let t = if k >= self.n { k - self.n } else { k };
+                    if state[t as usize] == 3 {
+                        return Some(t);
+                    }
+                    self.cursor[3] += 1;
+                }
             }
         }
         None
@@ -165,6 +177,13 @@ fn run(
     } else {
         rng.below(n)
     };
+    let mut initial = [Vec::new(), Vec::new(), Vec::new()];
+    for t in (offset..n).chain(0..offset) {
+        let d = state[t as usize];
+        if d < 3 {
+            initial[d as usize].push(t);
+        }
+    }
     let mut lists = Lists {
         stacks: [
             Vec::new(),
@@ -172,6 +191,7 @@ fn run(
             Vec::with_capacity(n as usize / 2),
             Vec::new(),
         ],
+        initial,
         cursor: [0; 4],
         n,
         offset,
