@@ -121,7 +121,8 @@ pub struct Limits {
 }
 
 impl Default for Limits {
-    /// 2^27 triangles (about 3 GB of decoder memory) and 2^28 vertices.
+    /// 2^27 triangles and 2^28 vertices. The decoder needs 36 bytes per triangle up to 89M
+    /// triangles, 48 beyond (about 6.4 GB at this limit).
     fn default() -> Limits {
         Limits {
             max_triangles: 1 << 27,

@@ -121,7 +121,7 @@ struct Slot<W> {
 type Step<T = ()> = std::result::Result<T, &'static str>;
 
 /// A chain entry: the corner at the other end and the length, in one word. Most meshes use
-/// [`u32`] entries (corner ids below 2^28, lengths in the top 4 bits), larger ones [`u64`]:
+/// [`u32`] entries (corner ids below 2^28, lengths in the top 4 bits), larger ones two words:
 /// the decoder's memory is mostly fresh pages, so every byte per corner costs time. Corners
 /// of triangles not created yet read as other end 0, length 0.
 trait ChainWord: Copy + Default {
@@ -151,22 +151,22 @@ impl ChainWord for u32 {
     }
 }
 
-impl ChainWord for u64 {
+impl ChainWord for [u32; 2] {
     #[inline(always)]
     fn fits(_: u64) -> bool {
         true
     }
     #[inline(always)]
-    fn entry(end: u32, len: u32) -> u64 {
-        ((len as u64) << 32) | end as u64
+    fn entry(end: u32, len: u32) -> [u32; 2] {
+        [end, len]
     }
     #[inline(always)]
     fn end(self) -> u32 {
-        self as u32
+        self[0]
     }
     #[inline(always)]
     fn len(self) -> u32 {
-        (self >> 32) as u32
+        self[1]
     }
 }
 
@@ -512,7 +512,7 @@ pub(crate) fn rebuild<B: Bits, K: Known>(
     if u32::fits(3 * nt as u64) && !force_wide() {
         run::<B, K, u32>(b, k, topo, nt, referenced)
     } else {
-        run::<B, K, u64>(b, k, topo, nt, referenced)
+        run::<B, K, [u32; 2]>(b, k, topo, nt, referenced)
     }
 }
 
@@ -551,7 +551,7 @@ fn split<B: Bits, K: Known, W: ChainWord>(
 
 #[cfg(test)]
 thread_local! {
-    /// Makes [`rebuild`] use [`u64`] chain entries on this thread, for tests.
+    /// Makes [`rebuild`] use two-word chain entries on this thread, for tests.
     static FORCE_WIDE: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
 }
 
