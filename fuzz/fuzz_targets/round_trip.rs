@@ -37,11 +37,13 @@ fn soup(u: &mut Unstructured) -> Result<(Mesh, EncodeOptions)> {
         mesh.colors = Some((0..vertices).map(|v| [v as u8, 7, 9, 255]).collect());
     }
     let options = EncodeOptions {
-        connectivity: match u.int_in_range(0..=2u8)? {
+        connectivity: match u.int_in_range(0..=3u8)? {
             0 => Connectivity::Lr,
             1 => Connectivity::Edgebreaker,
-            _ => Connectivity::Strips,
+            2 => Connectivity::Strips,
+            _ => Connectivity::LrCompact,
         },
+        periods: vec![u.int_in_range(0..=8u32)?],
         lr: LrOptions {
             tries: u.int_in_range(1..=4)?,
             seed: u.arbitrary()?,
