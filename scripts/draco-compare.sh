@@ -40,7 +40,7 @@ cargo build --release --quiet --bin lrmesh
 bench=$(cargo bench --no-run --bench edgebreaker 2>&1 | sed -n 's/.*Executable .*(\(.*\)).*/\1/p')
 [ -x "$bench" ] || { echo "cannot find the edgebreaker bench binary" >&2; exit 1; }
 
-declare -A dbpt dbest obpt obest otris
+declare -A dbpt dbest dtris obpt obest otris
 for m in "${meshes[@]}"; do
   name=$(basename "$m")
   target/release/lrmesh convert "$m" "$work/$name.ply" >/dev/null 2>&1
@@ -55,6 +55,7 @@ for _ in $(seq "$rounds"); do
     name=$(basename "$m")
     d=$("$work/draco_bench" "$work/$name.drc" "$runs")
     dbpt[$name]=$(sed -E 's/.*conn_bpt=([0-9.]+).*/\1/' <<<"$d")
+    dtris[$name]=$(sed -E 's/.*faces=([0-9]+).*/\1/' <<<"$d")
     dbest[$name]=$(max "${dbest[$name]}" "$(sed -E 's/.*conn_mtps=([0-9.]+).*/\1/' <<<"$d")")
     # Our bench: decode only, this mesh only.
     line=$(LRMESH_BENCH_RUNS=$(((runs + 2) / 3)) LRMESH_BENCH_DECODE_ONLY=1 \
@@ -66,10 +67,11 @@ for _ in $(seq "$rounds"); do
   done
 done
 
-printf '%-24s %9s %8s %8s %11s %11s %7s\n' mesh triangles "our bpt" "dr bpt" "our Mtri/s" "dr Mtri/s" ratio
+printf '%-24s %9s %9s %8s %8s %11s %11s %7s\n' mesh triangles "dr tris" "our bpt" "dr bpt" \
+  "our Mtri/s" "dr Mtri/s" ratio
 for m in "${meshes[@]}"; do
   name=$(basename "$m")
-  printf '%-24s %9s %8s %8s %11s %11s %7.2f\n' "$name" "${otris[$name]}" "${obpt[$name]}" \
+  printf '%-24s %9s %9s %8s %8s %11s %11s %7.2f\n' "$name" "${otris[$name]}" "${dtris[$name]}" "${obpt[$name]}" \
     "${dbpt[$name]}" "${obest[$name]}" "${dbest[$name]}" \
     "$(awk -v a="${obest[$name]}" -v b="${dbest[$name]}" 'BEGIN { print a / b }')"
 done
