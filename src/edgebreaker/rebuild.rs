@@ -55,7 +55,7 @@ const CONTEXTS: usize = HIST * (FAN_CAP as usize + 1) * (FAN_CAP as usize + 1);
 /// The adaptive model of the CLERS stream.
 struct Model {
     /// Binary decisions per context: C or not, R or not, S or not, L or E.
-    nodes: Vec<[Bit; 4]>,
+    nodes: Box<[[Bit; 4]; CONTEXTS]>,
     hist: usize,
     hole: [Bit; 1],
     hole_len: UintModel,
@@ -64,7 +64,7 @@ struct Model {
 impl Model {
     fn new() -> Model {
         Model {
-            nodes: vec![[Bit::default(); 4]; CONTEXTS],
+            nodes: Box::new([[Bit::default(); 4]; CONTEXTS]),
             hist: 0,
             hole: [Bit::default()],
             hole_len: UintModel::default(),
