@@ -15,13 +15,16 @@ use lrmesh::read::{open, Limits};
 use lrmesh::write::{encode, Connectivity, EncodeOptions, Metadata};
 use lrmesh::CornerOps;
 
-const VECTORS: [&str; 5] = [
+const VECTORS: [&str; 6] = [
     "closed_tetrahedron",
     "boundary_hedra_open",
     "two_components",
     "nonmanifold_vertex",
     // A torus whose LR has T0 triangles and irregular slots (records, T0 rows).
     "torus_with_t0",
+    // A torus with flipped edges, a hole and duplicated and degenerate triangles: in
+    // lr-compact, stored opposites that are ring corners and NONE.
+    "defective_torus",
 ];
 
 fn dir() -> PathBuf {
