@@ -242,6 +242,11 @@ enum Connectivity {
     LrCompact,
 }
 
+/// The HYBRID-RING-EXPANDER periods to try: the one `--period` forces, or the defaults.
+fn compact_periods(period: Option<u32>) -> Vec<u32> {
+    period.map_or(CompactOptions::default().periods, |k| vec![k])
+}
+
 /// Maps a container file read-only.
 fn map(path: &Path) -> lrmesh::Result<memmap2::Mmap> {
     let io_error = |source| Error::Io {
@@ -320,7 +325,7 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
                     &table,
                     &CompactOptions {
                         lr: LrOptions { tries, seed },
-                        periods: period.map_or(CompactOptions::default().periods, |k| vec![k]),
+                        periods: compact_periods(period),
                     },
                 )
             })?
@@ -366,7 +371,7 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
                     Connectivity::LrCompact => write::Connectivity::LrCompact,
                 },
                 lr: LrOptions { tries, seed },
-                periods: period.map_or(EncodeOptions::default().periods, |k| vec![k]),
+                periods: compact_periods(period),
                 keep_order,
                 quantize16: quantize.is_some(),
                 ..EncodeOptions::default()

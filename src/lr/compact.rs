@@ -28,7 +28,7 @@
 //! The operators are those of [`LrLayout`]; this module only encodes and decodes.
 
 use super::tables::{LrLayout, LrTables, Words, LEFT, NULL, RIGHT};
-use super::{Lr, LrCounts, LrOptions};
+use super::{Lr, LrCounts, LrInspect, LrOptions, TriangleClass};
 use crate::corner_table::{CornerTable, NONE};
 use crate::error::{Error, Result};
 use crate::ids::{Corner, Triangle, Vertex};
@@ -188,8 +188,7 @@ impl<W: Words, U: Units> CompactTables<W, U> {
     /// The record of extended pair `v` with pair word `p`.
     #[inline(always)]
     fn record(&self, v: u32, p: u32) -> Record {
-        let block = (v >> BLOCK_SHIFT) as usize;
-        let start = self.blocks.at(2 * block) as usize + ((p >> RECORD_SHIFT) & FIELD13) as usize;
+        let start = self.record_start(v, p);
         let head = self.records.at(start);
         let mut at = start + 1;
         let left_long = (p & FIELD13 == 0).then(|| {
@@ -230,12 +229,28 @@ impl<W: Words, U: Units> CompactTables<W, U> {
         }
     }
 
+    /// The first unit of the record of extended pair `v` with pair word `p`.
+    #[inline(always)]
+    pub(crate) fn record_start(&self, v: u32, p: u32) -> usize {
+        let block = (v >> BLOCK_SHIFT) as usize;
+        self.blocks.at(2 * block) as usize + ((p >> RECORD_SHIFT) & FIELD13) as usize
+    }
+
+    /// Whether the IRREGULAR flags of extended pair `v` agree with its record's head (a side
+    /// is IRREGULAR iff it stores an opposite). Reads the head: check `record_len` first.
+    pub(crate) fn irregular_flags_agree(&self, v: u32) -> bool {
+        let p = self.pair(v);
+        let head = self.records.at(self.record_start(v, p));
+        [LEFT, RIGHT]
+            .iter()
+            .all(|&side| (head >> (2 * side) & 3 != 0) == (p & X_IRREGULAR[side] != 0))
+    }
+
     /// The units of the record of extended pair `v`, or `None` when they run past the
     /// record units. Reads only units it has checked exist (for validation).
     pub(crate) fn record_len(&self, v: u32) -> Option<usize> {
         let p = self.pair(v);
-        let block = (v >> BLOCK_SHIFT) as usize;
-        let start = self.blocks.at(2 * block) as usize + ((p >> RECORD_SHIFT) & FIELD13) as usize;
+        let start = self.record_start(v, p);
         let n = self.records.count();
         let head = *(start < n).then(|| self.records.at(start)).as_ref()?;
         let mut at = start + 1;
@@ -988,10 +1003,10 @@ impl CompactStats {
         for v in 0..t.m_r {
             for side in [LEFT, RIGHT] {
                 if t.irregular(v, side) {
-                    if !t.wart(v, side) && t.tip(v, side) == t.ring_prev(v) {
-                        t2i += 1;
-                    } else {
-                        t1i += 1;
+                    // T0^w slots are stored as T1s, so they count there.
+                    match t.triangle_class(Triangle(2 * v + side as u32)) {
+                        Some(TriangleClass::T2 | TriangleClass::T2Wart) => t2i += 1,
+                        _ => t1i += 1,
                     }
                 }
             }

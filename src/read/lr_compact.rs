@@ -131,7 +131,7 @@ pub(super) fn lr_compact_tables<'a>(
             ));
         }
         if p >> 30 == EXTENDED {
-            let start = blocks.at(2 * block) as usize + ((p >> 13) & 0x1FFF) as usize;
+            let start = tables.record_start(v, p);
             if start != next_record {
                 return Err(word_err(
                     3,
@@ -149,15 +149,12 @@ pub(super) fn lr_compact_tables<'a>(
                         format!("record of pair {v} runs past the record units"),
                     )
                 })?;
-            let head = records.at(start);
-            for side in [0, 1] {
-                if (head >> (2 * side) & 3 != 0) != (p >> (26 + side) & 1 != 0) {
-                    return Err(word_err(
-                        3,
-                        v as usize,
-                        format!("pair {v}: IRREGULAR flag and stored opposites disagree"),
-                    ));
-                }
+            if !tables.irregular_flags_agree(v) {
+                return Err(word_err(
+                    3,
+                    v as usize,
+                    format!("pair {v}: IRREGULAR flag and stored opposites disagree"),
+                ));
             }
             next_record += len;
         }
