@@ -172,6 +172,17 @@ pub fn add_handle(mesh: &mut Mesh, t1: usize, t2: usize) {
     }
 }
 
+/// Up to `count` handles (see [`add_handle`]), each between a random triangle and a random
+/// triangle far from it; a draw with no far triangle adds nothing.
+pub fn add_random_handles(mesh: &mut Mesh, count: usize, rng: &mut Rng) {
+    for _ in 0..count {
+        let t = rng.below(mesh.triangles.len() as u32) as usize;
+        if let Some(u) = far_triangle(mesh, t, rng) {
+            add_handle(mesh, t, u);
+        }
+    }
+}
+
 /// A triangle of `mesh` none of whose vertices is `t`'s vertex or neighbour, so that a tube
 /// between the two (see [`add_handle`]) creates no existing edge. `None` if there is none.
 pub fn far_triangle(mesh: &Mesh, t: usize, rng: &mut Rng) -> Option<usize> {

@@ -27,12 +27,7 @@ impl Recipe {
         let mut rng = Rng::new(self.seed);
         let mut mesh = generate::torus(self.around, self.along);
         generate::flip_edges(&mut mesh, self.flips, &mut rng);
-        for _ in 0..self.handles {
-            let t = rng.below(mesh.triangles.len() as u32) as usize;
-            if let Some(u) = generate::far_triangle(&mesh, t, &mut rng) {
-                generate::add_handle(&mut mesh, t, u);
-            }
-        }
+        generate::add_random_handles(&mut mesh, self.handles, &mut rng);
         for k in 0..self.extra_components {
             let other = generate::torus(3 + k as u32, 4);
             generate::append(&mut mesh, &other);

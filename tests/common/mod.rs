@@ -194,3 +194,41 @@ fn cross_sums(table: &CornerTable, positions: &[[f32; 3]], v: lrmesh::Vertex) ->
         total,
     )
 }
+
+/// A torus with flipped edges, `handles` handles, a second torus, `holes` holes and `defects`
+/// defects: the generated meshes the LR proptests check.
+pub fn torus_with_everything(
+    around: u32,
+    along: u32,
+    holes: usize,
+    defects: usize,
+    handles: usize,
+    seed: u64,
+) -> Mesh {
+    use lrmesh::generate::{self, Rng};
+    let mut rng = Rng::new(seed);
+    let mut mesh = generate::torus(around, along);
+    generate::flip_edges(&mut mesh, 20, &mut rng);
+    generate::add_random_handles(&mut mesh, handles, &mut rng);
+    generate::append(&mut mesh, &generate::torus(3, 5));
+    generate::punch_holes(&mut mesh, holes, &mut rng);
+    generate::add_defects(&mut mesh, defects, &mut rng);
+    mesh
+}
+
+/// Asserts that `got` has the triangles of `want`, in the same order, each the same oriented
+/// triple, possibly rotated.
+pub fn assert_same_up_to_rotation(got: &[[u32; 3]], want: &[[u32; 3]], what: &str) {
+    assert_eq!(got.len(), want.len(), "{what}: triangle count");
+    for (k, (got, want)) in got.iter().zip(want).enumerate() {
+        let rotations = [
+            *want,
+            [want[1], want[2], want[0]],
+            [want[2], want[0], want[1]],
+        ];
+        assert!(
+            rotations.contains(got),
+            "{what}: triangle {k}: {got:?} != {want:?}"
+        );
+    }
+}
