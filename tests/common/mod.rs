@@ -232,3 +232,58 @@ pub fn assert_same_up_to_rotation(got: &[[u32; 3]], want: &[[u32; 3]], what: &st
         );
     }
 }
+
+/// The sections of a valid container as `(tag, flags, payload)`, in file order, ready to
+/// alter and [`assemble`](lrmesh::write::assemble) again.
+pub fn sections_of(bytes: &[u8]) -> Vec<(lrmesh::format::Tag, u32, Vec<u8>)> {
+    lrmesh::read::Container::parse(bytes, &lrmesh::read::Limits::default())
+        .unwrap()
+        .sections
+        .iter()
+        .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
+        .collect()
+}
+
+/// Forges section `tag` of the container `bytes`: every little-endian field of `width` bytes
+/// (2 or 4) in turn takes each of `values(original)` that differs from it, and the container
+/// is reassembled with its checksums recomputed, so that the section's rules themselves must
+/// catch the change. A forged container must fail to open with an error naming `tag` or
+/// `MESH`, or open and pass `consistent`. Returns how many were rejected and accepted.
+pub fn forge_fields(
+    bytes: &[u8],
+    tag: lrmesh::format::Tag,
+    width: usize,
+    values: impl Fn(u32) -> Vec<u32>,
+    mut consistent: impl FnMut(&lrmesh::read::MeshView),
+) -> (usize, usize) {
+    use lrmesh::read::{open, Limits};
+    let sections = sections_of(bytes);
+    let index = sections.iter().position(|s| s.0 == tag).unwrap();
+    let (mut rejected, mut accepted) = (0, 0);
+    for at in (0..sections[index].2.len() / width).map(|i| width * i) {
+        let field = &sections[index].2[at..at + width];
+        let original = field.iter().rev().fold(0u32, |x, &b| x << 8 | b as u32);
+        for value in values(original) {
+            if value == original {
+                continue;
+            }
+            let mut forged = sections.clone();
+            forged[index].2[at..at + width].copy_from_slice(&value.to_le_bytes()[..width]);
+            match open(&lrmesh::write::assemble(&forged), &Limits::default()) {
+                Err(e) => {
+                    let message = e.to_string();
+                    assert!(
+                        message.contains(&tag.name()) || message.contains("MESH"),
+                        "byte {at} = {value:#x}: {message}"
+                    );
+                    rejected += 1;
+                }
+                Ok(view) => {
+                    accepted += 1;
+                    consistent(&view);
+                }
+            }
+        }
+    }
+    (rejected, accepted)
+}
