@@ -311,7 +311,7 @@ fn split_fans(nv: u32, v: &mut [u32], o: &[u32]) -> Result<(Vec<u32>, Vec<u32>)>
         } else {
             let id = nv as usize + copy_of.len();
             if id >= NONE as usize {
-                return Err(Error::InvalidMesh(
+                return Err(Error::Unsupported(
                     "vertex copies exceed the 32-bit id space".into(),
                 ));
             }

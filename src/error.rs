@@ -59,16 +59,41 @@ impl fmt::Display for ParseError {
     }
 }
 
+/// A validity rule of `spec/FORMAT.md`, by its number: `Rule(12)` is **[V12]**.
+///
+/// Every check the container reader makes belongs to one rule, so a caller (or a test) can
+/// tell which rule a damaged file breaks without reading the message.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct Rule(pub u8);
+
+impl Rule {
+    /// The highest rule number this reader checks.
+    pub const LAST: Rule = Rule(39);
+
+    /// Every rule this reader checks, in order.
+    pub fn all() -> impl Iterator<Item = Rule> {
+        (1..=Rule::LAST.0).map(Rule)
+    }
+}
+
+impl fmt::Display for Rule {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "V{}", self.0)
+    }
+}
+
 /// A malformed container: the section (or `header`, `section table`), the byte offset from
-/// the start of the file, and what is wrong.
+/// the start of the file, the rule of `spec/FORMAT.md` it breaks, and what is wrong.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct FormatError {
     /// The file, when known.
     pub file: Option<PathBuf>,
-    /// The section's tag, or `header` / `section table`.
+    /// The section's tag, or `header` / `section table` / `file`.
     pub section: String,
     /// Byte offset from the start of the file.
     pub offset: u64,
+    /// The validity rule broken.
+    pub rule: Rule,
     /// What is wrong.
     pub message: String,
 }
@@ -80,8 +105,8 @@ impl fmt::Display for FormatError {
         }
         write!(
             f,
-            "invalid container: {} at byte offset {}: {}",
-            self.section, self.offset, self.message
+            "invalid container: {} at byte offset {}: {} [{}]",
+            self.section, self.offset, self.message, self.rule
         )
     }
 }
@@ -112,6 +137,17 @@ pub enum Error {
     /// A mesh handed to the library breaks the mesh invariants (see [`crate::Mesh::validate`]).
     #[error("invalid mesh: {0}")]
     InvalidMesh(String),
+    /// A caller passed an argument out of its range (an id beyond the mesh, too few
+    /// positions, ...).
+    #[error("invalid argument: {0}")]
+    InvalidArgument(String),
+    /// A valid input that a representation or command cannot hold or handle (a mesh beyond
+    /// a representation's id space, a container kind a command does not draw).
+    #[error("unsupported: {0}")]
+    Unsupported(String),
+    /// An internal invariant failed: a bug in lrmesh, never the input's fault. Please report it.
+    #[error("internal error (a bug in lrmesh): {0}")]
+    Internal(String),
     /// A container (`.lrm`) is malformed: which section, where, and what is wrong.
     #[error("{0}")]
     Format(Box<FormatError>),

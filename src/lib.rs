@@ -14,55 +14,37 @@
 //!
 //! # Example
 //!
-//! Read a shipped mesh, build its LR, store it, and walk a vertex's neighbours on the stored
-//! bytes; the answers are the corner table's.
+//! Save a mesh, load it back, open the file's bytes and walk a vertex's star on them:
 //!
 //! ```
-//! use lrmesh::io::{read_mesh, ReadOptions};
-//! use lrmesh::lr::{Lr, LrOptions};
-//! use lrmesh::ops::{self, CornerOps};
-//! use lrmesh::read::{self, Limits};
-//! use lrmesh::write::{self, EncodeOptions};
-//! use lrmesh::{CornerTable, Vertex};
-//!
 //! # fn main() -> Result<(), lrmesh::Error> {
-//! let path = concat!(env!("CARGO_MANIFEST_DIR"), "/corpus/meshes/knot1.off");
-//! let mesh = read_mesh(path.as_ref(), &ReadOptions::default())?.mesh;
-//! assert_eq!(mesh.triangle_count(), 6400);
-//!
-//! // Corner table (3 V + 3 O references per triangle) and LR (about 1 per triangle).
-//! let table = CornerTable::from_mesh(&mesh)?;
-//! let lr = Lr::build(&table, &LrOptions::default())?;
-//! assert!(lr.counts().references_per_triangle() < 1.5);
-//!
-//! // The container, validated once, then queried in place.
-//! let bytes = write::encode(&mesh, &EncodeOptions::default())?;
-//! let view = read::open(&bytes, &Limits::default())?;
-//! let stored = view.lr().expect("LR connectivity");
-//!
-//! // The same vertex has the same neighbours in the corner table and in the file.
-//! let v = Vertex(17);
-//! let input = lr.input_vertex(v);
-//! let mut from_file: Vec<u32> = ops::star(stored, v)
-//!     .map(|c| lr.input_vertex(stored.vertex(stored.next(c))))
-//!     .collect();
-//! let mut from_table: Vec<u32> = ops::star(&table, Vertex(input))
-//!     .map(|c| table.vertex(table.next(c)).0)
-//!     .collect();
-//! from_file.sort();
-//! from_table.sort();
-//! assert_eq!(from_file, from_table);
+//! # let dir = std::env::temp_dir().join(format!("lrmesh-doc-{}", std::process::id()));
+//! # std::fs::create_dir_all(&dir).unwrap();
+//! # let path = dir.join("knot.lrm");
+//! let mesh = lrmesh::load(concat!(env!("CARGO_MANIFEST_DIR"), "/corpus/meshes/knot1.off"))?;
+//! lrmesh::save(&path, &mesh)?;                        // format by extension: .lrm
+//! let bytes = std::fs::read(&path).unwrap();
+//! let file = lrmesh::open(&bytes)?;                   // validated once, then zero-copy
+//! for c in lrmesh::ops::star(file.connectivity(), lrmesh::Vertex(17)) { /* c.v, c.o, ... */ }
+//! # assert_eq!(lrmesh::load(&path)?.triangle_count(), mesh.triangle_count());
+//! # std::fs::remove_dir_all(&dir).ok();
 //! # Ok(())
 //! # }
 //! ```
+//!
+//! The representations are there to use directly too: [`CornerTable::from_mesh`],
+//! [`lr::Lr::build`], [`write::encode_built`] to store what was built without building it
+//! again, and [`read::open`] with [`read::Limits`] of one's own.
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
+#[cfg(feature = "bench")]
 pub mod bench;
 pub mod corner_table;
 pub mod edgebreaker;
 pub mod error;
 pub mod format;
+#[cfg(feature = "generate")]
 pub mod generate;
 pub mod ids;
 pub mod io;
@@ -70,17 +52,76 @@ pub mod lr;
 pub mod mesh;
 pub mod ops;
 pub mod read;
+#[cfg(feature = "render")]
 pub mod render;
+mod rng;
 pub mod strips;
 pub mod topology;
 pub mod write;
 
+pub mod words;
+
 pub use corner_table::CornerTable;
-pub use error::{Error, FormatError, Location, ParseError, Result};
+pub use error::{Error, FormatError, Location, ParseError, Result, Rule};
 pub use ids::{Corner, Triangle, Vertex};
 pub use mesh::Mesh;
 pub use ops::CornerOps;
+pub use read::Container;
 pub use topology::TopologyReport;
+
+/// Reads a mesh file of any supported format, chosen by its extension: `.obj`, `.off`,
+/// `.ply`, `.stl` or `.lrm` (a container, fully validated and decoded).
+///
+/// # Errors
+/// [`Error::UnknownFormat`], [`Error::Io`], [`Error::Parse`] or the container reader's
+/// errors, with the file named.
+pub fn load(path: impl AsRef<std::path::Path>) -> Result<Mesh> {
+    Ok(io::read_mesh(path.as_ref(), &io::ReadOptions::default())?.mesh)
+}
+
+/// Writes a mesh file in the format its extension names: `.lrm` with default
+/// [`write::EncodeOptions`], or `.obj`, `.off`, `.ply`.
+///
+/// # Errors
+/// [`Error::UnknownFormat`], [`Error::InvalidMesh`], [`Error::Io`].
+pub fn save(path: impl AsRef<std::path::Path>, mesh: &Mesh) -> Result<()> {
+    io::write_mesh(path.as_ref(), mesh)
+}
+
+/// Writes a container (whatever the extension) with the given options.
+///
+/// # Errors
+/// As [`write::encode`], and [`Error::Io`] naming the file.
+pub fn save_with(
+    path: impl AsRef<std::path::Path>,
+    mesh: &Mesh,
+    options: &write::EncodeOptions,
+) -> Result<()> {
+    use std::io::Write as _;
+    let path = path.as_ref();
+    let io_err = |source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let file = std::fs::File::create(path).map_err(io_err)?;
+    let mut out = std::io::BufWriter::new(file);
+    write::encode_to(&mut out, mesh, options).map_err(|e| match e {
+        Error::Io { source, .. } => io_err(source),
+        other => other,
+    })?;
+    out.flush().map_err(io_err)
+}
+
+/// Validates a container's bytes once and gives the zero-copy view: the connectivity
+/// answering [`CornerOps`] for every kind, positions and attributes, and the map back to the
+/// input's vertex ids. With default [`read::Limits`].
+///
+/// # Errors
+/// [`Error::Format`] naming the section, offset and rule broken, and the other errors of
+/// [`read::open`].
+pub fn open(bytes: &[u8]) -> Result<Container<'_>> {
+    read::open(bytes, &read::Limits::default())
+}
 
 /// The README's code compiles (`cargo test --doc`).
 #[cfg(doctest)]

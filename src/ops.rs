@@ -74,6 +74,20 @@ pub trait CornerOps {
     }
 }
 
+/// The first corner of `c`'s fan: unswinging from `c` until there is no unswing (an open
+/// fan) or the walk comes back to `c` (a closed fan, where `c` itself is returned). At most
+/// one step per corner of the vertex, when swing is injective (every valid mesh).
+pub fn fan_start<M: CornerOps + ?Sized>(mesh: &M, c: Corner) -> Corner {
+    let mut d = c;
+    while let Some(e) = mesh.unswing(d) {
+        if e == c {
+            return c;
+        }
+        d = e;
+    }
+    d
+}
+
 /// The corners around a vertex, in swing order (see [`star`]).
 pub struct Star<'a, M: CornerOps + ?Sized> {
     mesh: &'a M,

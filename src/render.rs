@@ -311,7 +311,7 @@ impl Camera {
 /// Renders the triangles of `lr` at `positions` (indexed by LR vertex).
 ///
 /// # Errors
-/// [`Error::InvalidMesh`] when `positions` has fewer entries than `lr` has vertices;
+/// [`Error::InvalidArgument`] when `positions` has fewer entries than `lr` has vertices;
 /// [`Error::LimitExceeded`] when the image would have more than [`MAX_SAMPLES`] samples.
 pub fn render<L: LrLayout>(
     lr: &L,
@@ -319,7 +319,7 @@ pub fn render<L: LrLayout>(
     options: &RenderOptions,
 ) -> Result<Image> {
     if positions.len() < lr.vertex_id_bound() as usize {
-        return Err(Error::InvalidMesh(format!(
+        return Err(Error::InvalidArgument(format!(
             "{} positions for an LR of {} vertices",
             positions.len(),
             lr.vertex_id_bound()

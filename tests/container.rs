@@ -405,7 +405,7 @@ proptest! {
 /// Readers skip optional sections they do not know and reject required ones.
 #[test]
 fn unknown_sections() {
-    use lrmesh::format::{Tag, FLAG_REQUIRED};
+    use lrmesh::format::{Flags, Tag};
     use lrmesh::write::assemble;
     let mesh = generate::torus(4, 5);
     let bytes = encode(&mesh, &EncodeOptions::default()).unwrap();
@@ -415,11 +415,14 @@ fn unknown_sections() {
         bytes,
         "reassembling gives the same bytes"
     );
-    sections.insert(1, (Tag(*b"XTRA"), 0, b"later minor versions".to_vec()));
+    sections.insert(
+        1,
+        (Tag(*b"XTRA"), Flags::NONE, b"later minor versions".to_vec()),
+    );
     let with_optional = assemble(&sections);
     let view = open(&with_optional, &Limits::default()).unwrap();
     assert_eq!(view.to_mesh().triangles.len(), mesh.triangles.len());
-    sections[1].1 = FLAG_REQUIRED;
+    sections[1].1 = Flags::REQUIRED;
     let with_required = assemble(&sections);
     assert!(matches!(
         open(&with_required, &Limits::default()),
@@ -431,7 +434,7 @@ fn unknown_sections() {
 /// encoding, found while writing spec/EDGEBREAKER.md) is not a valid container.
 #[test]
 fn edgebreaker_stream_decoding_to_a_degenerate_triangle_is_rejected() {
-    use lrmesh::format::{Tag, FLAG_REQUIRED};
+    use lrmesh::format::{Flags, Tag};
     use lrmesh::write::assemble;
     let mesh = read_mesh(
         &corpus_dir().join("hedra_open.off"),
@@ -446,7 +449,7 @@ fn edgebreaker_stream_decoding_to_a_degenerate_triangle_is_rejected() {
     let bytes = encode(&mesh, &options).unwrap();
     let mut sections = sections_of(&bytes);
     let ebrk = sections.iter_mut().find(|s| s.0 == Tag::EBRK).unwrap();
-    assert_eq!(ebrk.1, FLAG_REQUIRED);
+    assert_eq!(ebrk.1, Flags::REQUIRED);
     let forged = [0xeb, 0x01, 0x06, 0x00, 0x06, 0x02, 0x86, 0xa0, 0x2a];
     let decoded = lrmesh::edgebreaker::decode(&forged, &Default::default()).unwrap();
     assert!(decoded

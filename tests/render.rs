@@ -310,7 +310,7 @@ fn sizes_beyond_the_limit_are_refused() {
     ));
     assert!(matches!(
         render::render(lr.tables(), &positions[..1], &RenderOptions::default()),
-        Err(Error::InvalidMesh(_))
+        Err(Error::InvalidArgument(_))
     ));
 }
 

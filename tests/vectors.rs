@@ -11,11 +11,11 @@ use std::path::PathBuf;
 mod common;
 use common::assert_same_up_to_rotation;
 
+use lrmesh::format::Metadata;
 use lrmesh::io::{read_mesh, ReadOptions};
 use lrmesh::lr::LrLayout;
-use lrmesh::read::ConnectivityView;
-use lrmesh::read::{open, Limits};
-use lrmesh::write::{encode, Connectivity, EncodeOptions, Metadata};
+use lrmesh::read::{open, Connectivity as View, Limits};
+use lrmesh::write::{encode, Connectivity, EncodeOptions};
 use lrmesh::CornerOps;
 
 const VECTORS: [&str; 6] = [
@@ -55,13 +55,13 @@ fn listing(name: &str, bytes: &[u8]) -> String {
     let mut out = String::new();
     let n = view.triangle_count();
     match view.connectivity() {
-        ConnectivityView::Lr(lr) => corner_listing(
+        View::Lr(lr) => corner_listing(
             &mut out,
             name,
             lr,
             format!("{n} triangles, {} ring vertices", lr.ring_vertices()),
         ),
-        ConnectivityView::LrCompact(lr) => corner_listing(
+        View::LrCompact(lr) => corner_listing(
             &mut out,
             name,
             lr,
@@ -71,21 +71,22 @@ fn listing(name: &str, bytes: &[u8]) -> String {
                 lr.t0_count()
             ),
         ),
-        ConnectivityView::Strips(strips) => corner_listing(
+        View::Strips(strips) => corner_listing(
             &mut out,
             name,
             strips,
             format!("{n} triangles, {} strip entries", strips.len()),
         ),
-        ConnectivityView::Edgebreaker(triangles) => {
+        View::Edgebreaker(table) => {
             writeln!(
                 out,
                 "# lrmesh test vector {name}: the decoded triangles, in decode order"
             )
             .unwrap();
-            writeln!(out, "# {} triangles", triangles.len()).unwrap();
+            writeln!(out, "# {} triangles", table.triangle_id_bound()).unwrap();
             writeln!(out, "# triangle a b c").unwrap();
-            for (t, [a, b, c]) in triangles.iter().enumerate() {
+            for t in table.triangles() {
+                let [a, b, c] = table.triangle_vertices(t);
                 writeln!(out, "{t} {a} {b} {c}").unwrap();
             }
         }

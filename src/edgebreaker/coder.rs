@@ -366,7 +366,7 @@ mod tests {
 
     #[test]
     fn bits_and_uints_round_trip() {
-        let mut rng = crate::generate::Rng::new(7);
+        let mut rng = crate::rng::Rng::new(7);
         let bits: Vec<(u32, u32)> = (0..20_000)
             .map(|i| {
                 let ctx = (i % 3) as u32;

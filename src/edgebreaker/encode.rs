@@ -148,7 +148,7 @@ impl Walker<'_> {
                 };
                 if !self.visited_t[(lc / 3) as usize] {
                     if hole {
-                        return Err(Error::InvalidMesh(
+                        return Err(Error::Internal(
                             "Edgebreaker: boundary S whose left triangle was not reached".into(),
                         ));
                     }
@@ -237,7 +237,7 @@ pub(crate) fn plan(table: &CornerTable) -> Result<Plan> {
     w.vertex_order
         .extend((0..nv as u32).filter(|&x| c_table[x as usize] == NONE));
     if w.vertex_order.len() != nv {
-        return Err(Error::InvalidMesh(
+        return Err(Error::Internal(
             "Edgebreaker: a vertex was numbered twice or never".into(),
         ));
     }
@@ -292,7 +292,7 @@ fn leb128(out: &mut Vec<u8>, mut x: u64) {
 /// Encodes the connectivity of `table`.
 ///
 /// # Errors
-/// [`Error::InvalidMesh`] if the table's invariants do not hold (they always do for a table
+/// [`Error::Internal`] if the table's invariants do not hold (they always do for a table
 /// built by [`CornerTable::build`]), or if the stream fails to rebuild the table (a bug).
 pub fn encode(table: &CornerTable) -> Result<Encoded> {
     let plan = plan(table)?;
@@ -310,7 +310,7 @@ pub fn encode(table: &CornerTable) -> Result<Encoded> {
         hi: plan.holes.len(),
     };
     let (rebuilt, tally) = rebuild(&mut clers, &mut known, &plan.topology, nt, plan.referenced)
-        .map_err(|e| Error::InvalidMesh(format!("Edgebreaker encoder could not rebuild: {e}")))?;
+        .map_err(|e| Error::Internal(format!("Edgebreaker encoder could not rebuild: {e}")))?;
     let clers = clers.finish();
     // The stream must give back the table: check every corner (linear, and cheap next to
     // the traversal).
@@ -319,7 +319,7 @@ pub fn encode(table: &CornerTable) -> Result<Encoded> {
         let e = plan.entry[t];
         for (i, c) in [e, next(e), prev(e)].into_iter().enumerate() {
             if plan.vertex_order[tri[i] as usize] != v[c as usize] {
-                return Err(Error::InvalidMesh(format!(
+                return Err(Error::Internal(format!(
                     "Edgebreaker encoder: decode triangle {t} does not match the table"
                 )));
             }

@@ -677,7 +677,7 @@ fn run<B: Bits, K: Known, W: ChainWord>(
     Ok((st.v, tally))
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "generate"))]
 mod tests {
     use super::FORCE_WIDE;
     use crate::edgebreaker::{decode, encode, Limits};

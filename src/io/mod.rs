@@ -49,10 +49,14 @@ pub enum MeshFormat {
     Ply,
     /// Stereolithography, ASCII or binary.
     Stl,
+    /// This crate's container (`.lrm`), read fully validated and written with default
+    /// [`EncodeOptions`](crate::write::EncodeOptions).
+    Lrm,
 }
 
 impl MeshFormat {
-    /// The format named by a file's extension (`.obj`, `.off`, `.ply`, `.stl`, in any case).
+    /// The format named by a file's extension (`.obj`, `.off`, `.ply`, `.stl`, `.lrm`, in any
+    /// case).
     ///
     /// # Errors
     /// [`Error::UnknownFormat`] when the extension is missing or not one of those.
@@ -66,13 +70,16 @@ impl MeshFormat {
             Some("off") => Ok(MeshFormat::Off),
             Some("ply") => Ok(MeshFormat::Ply),
             Some("stl") => Ok(MeshFormat::Stl),
+            Some("lrm") => Ok(MeshFormat::Lrm),
             Some(other) => Err(Error::UnknownFormat {
                 path: path.to_path_buf(),
-                reason: format!("unknown extension `.{other}`; expected .obj, .off, .ply or .stl"),
+                reason: format!(
+                    "unknown extension `.{other}`; expected .obj, .off, .ply, .stl or .lrm"
+                ),
             }),
             None => Err(Error::UnknownFormat {
                 path: path.to_path_buf(),
-                reason: "no file extension; expected .obj, .off, .ply or .stl".to_string(),
+                reason: "no file extension; expected .obj, .off, .ply, .stl or .lrm".to_string(),
             }),
         }
     }
@@ -84,6 +91,7 @@ impl MeshFormat {
             MeshFormat::Off => "OFF",
             MeshFormat::Ply => "PLY",
             MeshFormat::Stl => "STL",
+            MeshFormat::Lrm => "LRM",
         }
     }
 }
@@ -129,13 +137,18 @@ pub fn read_mesh(path: &Path, opts: &ReadOptions) -> Result<Loaded> {
 /// Reads a mesh from the bytes of a file in the given format.
 ///
 /// # Errors
-/// [`Error::Parse`] when the bytes are not a valid file of that format.
+/// [`Error::Parse`] when the bytes are not a valid file of that format ([`Error::Format`] and
+/// the container reader's errors for `.lrm`).
 pub fn read_mesh_bytes(bytes: &[u8], format: MeshFormat, opts: &ReadOptions) -> Result<Loaded> {
     let loaded = match format {
         MeshFormat::Obj => obj::read(bytes, opts),
         MeshFormat::Off => off::read(bytes, opts),
         MeshFormat::Ply => ply::read(bytes, opts),
         MeshFormat::Stl => stl::read(bytes, opts),
+        MeshFormat::Lrm => Ok(Loaded {
+            mesh: crate::read::open(bytes, &crate::read::Limits::default())?.to_mesh(),
+            warnings: Vec::new(),
+        }),
     }?;
     debug_assert!(loaded.mesh.validate().is_ok());
     Ok(loaded)
@@ -159,6 +172,20 @@ pub fn write_mesh(path: &Path, mesh: &Mesh) -> Result<()> {
         source,
     };
     let file = std::fs::File::create(path).map_err(io_err)?;
+    if format == MeshFormat::Lrm {
+        let mut out = std::io::BufWriter::new(file);
+        return crate::write::encode_to(&mut out, mesh, &Default::default())
+            .and_then(|()| {
+                out.flush().map_err(|source| Error::Io {
+                    path: path.to_path_buf(),
+                    source,
+                })
+            })
+            .map_err(|e| match e {
+                Error::Io { source, .. } => io_err(source),
+                other => other,
+            });
+    }
     write_format(file, mesh, format).map_err(io_err)
 }
 
@@ -172,10 +199,18 @@ pub fn write_mesh_to<W: Write>(w: W, mesh: &Mesh, format: MeshFormat) -> Result<
         return Err(stl_write_unsupported(Path::new("<output>")));
     }
     mesh.validate()?;
-    write_format(w, mesh, format).map_err(|source| Error::Io {
+    let io_err = |source| Error::Io {
         path: PathBuf::from("<output>"),
         source,
-    })
+    };
+    if format == MeshFormat::Lrm {
+        let mut w = w;
+        return crate::write::encode_to(&mut w, mesh, &Default::default()).map_err(|e| match e {
+            Error::Io { source, .. } => io_err(source),
+            other => other,
+        });
+    }
+    write_format(w, mesh, format).map_err(io_err)
 }
 
 fn write_format<W: Write>(w: W, mesh: &Mesh, format: MeshFormat) -> std::io::Result<()> {
@@ -184,6 +219,10 @@ fn write_format<W: Write>(w: W, mesh: &Mesh, format: MeshFormat) -> std::io::Res
         MeshFormat::Off => off::write(w, mesh),
         MeshFormat::Ply => ply::write(w, mesh),
         MeshFormat::Stl => stl::write_binary(w, mesh),
+        // Containers are written by `write::encode_to`, before this is reached.
+        MeshFormat::Lrm => Err(std::io::Error::other(
+            "containers are not a text mesh format",
+        )),
     }
 }
 

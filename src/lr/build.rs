@@ -1,13 +1,15 @@
 //! Construction of the LR from a corner table: closing boundaries with dummy vertices,
 //! RING-EXPANDER per component, triangle classes, warts, and irregular records.
 
-use super::tables::{ring_bits, LrLayout, LrTables, LEFT, NULL, RIGHT, VALUE, WART};
+use super::tables::{
+    find_boundaries_on_ring, ring_bits, LrLayout, LrTables, LEFT, NULL, RIGHT, VALUE, WART,
+};
 use super::{Lr, LrCounts, LrOptions};
 use crate::corner_table::{CornerTable, NONE};
 use crate::error::{Error, Result};
-use crate::generate::Rng;
 use crate::ids::{Triangle, Vertex};
 use crate::ops::CornerOps;
+use crate::rng::Rng;
 
 /// The corner table closed by dummy vertices and triangles over each boundary loop.
 struct Closed {
@@ -58,7 +60,7 @@ impl Closed {
         }
         let total = v.len() + 3 * boundary.len();
         if total >= (NONE / 2) as usize {
-            return Err(Error::InvalidMesh("mesh too large for LR".into()));
+            return Err(Error::Unsupported("mesh too large for LR".into()));
         }
         v.resize(total, NONE);
         o.resize(total, NONE);
@@ -264,7 +266,7 @@ impl Lr {
     /// Builds the LR of a corner table.
     ///
     /// # Errors
-    /// [`Error::InvalidMesh`] when the mesh exceeds the id space (`2^30 - 2` vertices, corner
+    /// [`Error::Unsupported`] when the mesh exceeds the id space (`2^30 - 2` vertices, corner
     /// ids below `2^32`).
     pub fn build(ct: &CornerTable, options: &LrOptions) -> Result<Lr> {
         Lr::build_with_period(ct, options, 0)
@@ -284,7 +286,7 @@ impl Lr {
         };
         let real_vertices = mesh.real_vertices;
         if real_vertices >= NULL {
-            return Err(Error::InvalidMesh(
+            return Err(Error::Unsupported(
                 "LR holds at most 2^30 - 2 vertices".into(),
             ));
         }
@@ -354,7 +356,7 @@ impl Lr {
         }
         let m_r = ring_corner.len() as u32;
         if (m_r as u64) * 8 + 4 * (mesh.real_triangles as u64) >= NONE as u64 {
-            return Err(Error::InvalidMesh(
+            return Err(Error::Unsupported(
                 "mesh too large for LR corner ids".into(),
             ));
         }
@@ -370,6 +372,7 @@ impl Lr {
             ring_rank,
             m_r,
             m: real_vertices,
+            boundaries_on_ring: false,
         };
 
         // LR vertex ids: ring vertices by ring position, then isolated ones in table order.
@@ -572,6 +575,7 @@ impl Lr {
             lr_struct.triangle_input[id as usize] = input;
             lr_struct.input_triangle_lr[input as usize] = id;
         }
+        lr_struct.tables.boundaries_on_ring = find_boundaries_on_ring(&lr_struct.tables);
         lr_struct.counts = LrCounts {
             triangles: nt_real as u32,
             vertices: m,

@@ -27,12 +27,13 @@
 //!
 //! The operators are those of [`LrLayout`]; this module only encodes and decodes.
 
-use super::tables::{LrLayout, LrTables, Words, LEFT, NULL, RIGHT};
+use super::tables::{LrLayout, LrTables, LEFT, NULL, RIGHT};
 use super::{Lr, LrCounts, LrInspect, LrOptions, TriangleClass};
 use crate::corner_table::{CornerTable, NONE};
 use crate::error::{Error, Result};
 use crate::ids::{Corner, Triangle, Vertex};
 use crate::ops::CornerOps;
+use crate::words::{Units, Words};
 
 /// Ring vertices per block: `v >> BLOCK_SHIFT` is the block of `v`.
 pub const BLOCK_SHIFT: u32 = 8;
@@ -75,38 +76,6 @@ const TAG_T0: u16 = 0x8000;
 const ESCAPE: u16 = 0x4000;
 /// The largest difference a 15-bit field holds.
 const SHORT_MAX: i64 = 0x3FFF;
-
-/// An array of 16-bit units: a vector, or little-endian bytes read in place.
-pub trait Units {
-    /// Unit `i`. Panics when `i` is out of range; validation guarantees it never is.
-    fn at(&self, i: usize) -> u16;
-    /// Number of units.
-    fn count(&self) -> usize;
-}
-
-impl Units for Vec<u16> {
-    #[inline(always)]
-    fn at(&self, i: usize) -> u16 {
-        self[i]
-    }
-    fn count(&self) -> usize {
-        self.len()
-    }
-}
-
-/// Little-endian 16-bit units in a byte slice.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct LeUnits<'a>(pub(crate) &'a [u8]);
-
-impl Units for LeUnits<'_> {
-    #[inline(always)]
-    fn at(&self, i: usize) -> u16 {
-        u16::from_le_bytes([self.0[2 * i], self.0[2 * i + 1]])
-    }
-    fn count(&self) -> usize {
-        self.0.len() / 2
-    }
-}
 
 /// Sign-extends the low 15 bits.
 #[inline(always)]
@@ -160,6 +129,8 @@ pub struct CompactTables<W, U> {
     pub(crate) records: U,
     pub(crate) m_r: u32,
     pub(crate) m: u32,
+    /// As [`LrTables`]' field: derived, never stored.
+    pub(crate) boundaries_on_ring: bool,
 }
 
 /// Where the parts of an extended pair's record are.
@@ -454,6 +425,11 @@ impl<W: Words, U: Units> LrLayout for CompactTables<W, U> {
     }
 
     #[inline(always)]
+    fn boundaries_on_ring(&self) -> bool {
+        self.boundaries_on_ring
+    }
+
+    #[inline(always)]
     fn isolated_corner(&self, i: u32) -> u32 {
         self.c.at(i as usize)
     }
@@ -501,7 +477,9 @@ fn stored_bytes<W: Words, U: Units>(t: &CompactTables<W, U>) -> u64 {
         + t.c.count()
         + t.overflow.count();
     let units = t.t0.count() + t.records.count();
-    crate::format::LRBE_HEADER_LEN as u64 + 4 * words as u64 + 2 * units as u64
+    // The eight counts that describe the tables (m, m_r, rings, n0, U, F, k, reserved).
+    const COUNTS: u64 = 8;
+    4 * (COUNTS + words as u64) + 2 * units as u64
 }
 
 impl CompactLr {
@@ -509,7 +487,7 @@ impl CompactLr {
     /// the smallest is kept.
     ///
     /// # Errors
-    /// [`Error::InvalidMesh`] when the mesh exceeds the LR's id space.
+    /// [`Error::Unsupported`] when the mesh exceeds the LR's id space.
     pub fn build(ct: &CornerTable, options: &CompactOptions) -> Result<CompactLr> {
         let mut best: Option<CompactLr> = None;
         let periods: &[u32] = if options.periods.is_empty() {
@@ -651,7 +629,7 @@ impl CompactLr {
                 }
             }
             if relative > FIELD13 {
-                return Err(Error::InvalidMesh("LR record block overflow".into()));
+                return Err(Error::Unsupported("LR record block overflow".into()));
             }
         }
         let several = t.ring_count() > 1;
@@ -676,6 +654,7 @@ impl CompactLr {
             records,
             m_r,
             m: t.m,
+            boundaries_on_ring: t.boundaries_on_ring,
         };
 
         // T0 rows, whose opposites are found with the ring slots and the rows before them.
@@ -721,7 +700,7 @@ impl CompactLr {
                 if tables.vertex(ours) != t.vertex(c)
                     || tables.opposite_raw(ours.0) != map_corner(t.opposite_raw(c.0))
                 {
-                    return Err(Error::InvalidMesh(format!(
+                    return Err(Error::Internal(format!(
                         "bit-efficient LR disagrees with the standard LR at corner {}",
                         c.0
                     )));

@@ -45,9 +45,9 @@ mod build;
 pub mod compact;
 mod tables;
 
-pub use compact::{CompactLr, CompactOptions, CompactStats, CompactTables, LeUnits, Units};
-pub(crate) use tables::ring_bits;
-pub use tables::{LeWords, LrLayout, LrTables, Words, IRREGULAR, NULL, VALUE, WART};
+pub use compact::{CompactLr, CompactOptions, CompactStats, CompactTables};
+pub(crate) use tables::{find_boundaries_on_ring, ring_bits};
+pub use tables::{LrLayout, LrTables, IRREGULAR, NULL, VALUE, WART};
 
 use crate::corner_table::NONE;
 use crate::ids::{Corner, Triangle, Vertex};

@@ -4,6 +4,7 @@
 use crate::corner_table::NONE;
 use crate::ids::{Corner, Triangle, Vertex};
 use crate::ops::CornerOps;
+use crate::words::Words;
 
 /// Entry flag: the slot's triangle has a VO* record; the entry's value is the record index.
 pub const IRREGULAR: u32 = 1 << 31;
@@ -18,39 +19,6 @@ pub const NULL: u32 = VALUE;
 /// Left or right side of a ring edge: the offset of its slot in the LR table.
 pub(crate) const LEFT: usize = 0;
 pub(crate) const RIGHT: usize = 1;
-
-/// An array of 32-bit words: a vector, or little-endian bytes read in place.
-pub trait Words {
-    /// Word `i`. Panics when `i` is out of range; validation guarantees it never is.
-    fn at(&self, i: usize) -> u32;
-    /// Number of words.
-    fn count(&self) -> usize;
-}
-
-impl Words for Vec<u32> {
-    #[inline(always)]
-    fn at(&self, i: usize) -> u32 {
-        self[i]
-    }
-    fn count(&self) -> usize {
-        self.len()
-    }
-}
-
-/// Little-endian 32-bit words in a byte slice, read without assuming alignment.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct LeWords<'a>(pub(crate) &'a [u8]);
-
-impl Words for LeWords<'_> {
-    #[inline(always)]
-    fn at(&self, i: usize) -> u32 {
-        let b = &self.0[4 * i..4 * i + 4];
-        u32::from_le_bytes([b[0], b[1], b[2], b[3]])
-    }
-    fn count(&self) -> usize {
-        self.0.len() / 4
-    }
-}
 
 /// The standard LR tables (see the module documentation of [`crate::lr`]).
 ///
@@ -77,6 +45,23 @@ pub struct LrTables<W> {
     pub(crate) m_r: u32,
     /// All vertices.
     pub(crate) m: u32,
+    /// Whether every boundary edge is a ring edge whose right slot has tip `NULL` (derived,
+    /// not stored: see [`LrLayout::boundaries_on_ring`]).
+    pub(crate) boundaries_on_ring: bool,
+}
+
+/// Whether every corner of `tables` without an opposite is the tip corner of a left slot
+/// whose right slot has tip `NULL` (see [`LrLayout::boundaries_on_ring`]).
+pub(crate) fn find_boundaries_on_ring<T: LrLayout>(tables: &T) -> bool {
+    let null_right = (0..tables.ring_vertices())
+        .filter(|&v| tables.tip(v, RIGHT) == NULL && !tables.wart(v, LEFT))
+        .count();
+    let without_opposite = tables
+        .triangles()
+        .flat_map(|t| tables.triangle_corners(t))
+        .filter(|&c| tables.opposite(c).is_none())
+        .count();
+    null_right == without_opposite
 }
 
 /// Ring bit vector and ranks for rings starting at `starts` (which ends with `m_r`).
@@ -177,6 +162,11 @@ impl<W: Words> LrLayout for LrTables<W> {
         self.vo_o.at(k as usize)
     }
     #[inline(always)]
+    fn boundaries_on_ring(&self) -> bool {
+        self.boundaries_on_ring
+    }
+
+    #[inline(always)]
     fn isolated_corner(&self, i: u32) -> u32 {
         self.c.at(i as usize)
     }
@@ -224,6 +214,11 @@ pub trait LrLayout {
     fn t0_opposite(&self, k: u32) -> u32;
     /// The corner of isolated vertex `m_r + i`, `NONE` for a vertex without triangles.
     fn isolated_corner(&self, i: u32) -> u32;
+    /// Whether every corner without an opposite is the tip corner of a left slot whose
+    /// right slot has tip `NULL`: the mesh's boundaries all run along the ring, so that
+    /// `v.c` finds a fan's start in constant time (OPERATORS.md §4). Derived from the
+    /// tables when they are built or validated, never stored.
+    fn boundaries_on_ring(&self) -> bool;
 
     /// Whether `v` ends its ring.
     #[inline(always)]
@@ -502,7 +497,19 @@ impl<T: LrLayout> CornerOps for T {
         if v.0 >= m_r {
             return Corner::from_stored(self.isolated_corner(v.0 - m_r));
         }
-        Some(Corner(self.canonical(8 * v.0)))
+        // The fan's first corner (OPERATORS.md §4): after a boundary ring edge (u, v) it is
+        // v's corner in u's left triangle; with every boundary on the ring, any other ring
+        // vertex has a closed fan; otherwise the fan is walked back to its start.
+        let u = self.ring_prev(v.0);
+        let boundary_before = self.tip(u, RIGHT) == NULL;
+        if boundary_before && !self.wart(u, LEFT) {
+            return Some(Corner(self.canonical(8 * u + 2)));
+        }
+        let c = Corner(self.canonical(8 * v.0));
+        if self.boundaries_on_ring() && !boundary_before {
+            return Some(c);
+        }
+        Some(crate::ops::fan_start(self, c))
     }
 
     #[inline(always)]

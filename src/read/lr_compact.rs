@@ -1,105 +1,83 @@
 //! The `LRBE` section (connectivity kind 4): the bit-efficient LR, validated once by rules
-//! V33–V37 of `spec/FORMAT.md` (then the LR rules every layout keeps) and read in place as
-//! [`CompactTables`] over the buffer's little-endian words and units.
+//! V33–V38 of `spec/FORMAT.md` (V37 brings in the LR rules every layout keeps) and read in
+//! place as [`CompactTables`] over the buffer's little-endian words and units.
 
-use super::{check_lr_layout, le_u32, Container, Fields};
+use super::fields::Fields;
+use super::lr_rules::{check_lr_opposites, check_rings, check_vertex_corners};
+use super::Sections;
 use crate::corner_table::NONE;
-use crate::error::Result;
-use crate::format::{Tag, LRBE_HEADER_LEN};
+use crate::error::{Result, Rule};
+use crate::format::layout::LrbeHeader;
+use crate::format::Tag;
 use crate::ids::Corner;
-use crate::lr::compact::{BLOCK_SHIFT, EXTENDED, GROUP_SHIFT, OVERFLOW_ROW_WORDS, T0_ROW_UNITS};
-use crate::lr::{CompactTables, LeUnits, LeWords, LrLayout, Units, Words, NULL};
+use crate::lr::compact::{BLOCK_SHIFT, EXTENDED, T0_ROW_UNITS};
+use crate::lr::{find_boundaries_on_ring, CompactTables, LrLayout, NULL};
+use crate::words::{LeUnits, LeWords, Units, Words};
 
 /// The `LRBE` section as tables, after checking every rule the operators rely on.
 pub(super) fn lr_compact_tables<'a>(
-    container: &Container<'a>,
+    sections: &Sections<'a>,
     m: u32,
 ) -> Result<CompactTables<LeWords<'a>, LeUnits<'a>>> {
-    let section = *container.required(Tag::LRBE)?;
-    let f = Fields { section };
-    let b = section.bytes;
-    if b.len() < LRBE_HEADER_LEN {
+    let f = Fields::new(sections.required(Tag::LRBE)?);
+    let b = f.bytes();
+    // [V33] counts and length.
+    f.expect_at_least(LrbeHeader::LEN, Rule(33))?;
+    let h = LrbeHeader::read(b);
+    let (m_r, rings, n0, overflow_rows) = (h.m_r, h.rings, h.t0, h.overflow_rows);
+    if h.m != m {
         return Err(f.err(
             0,
-            format!(
-                "{} bytes, shorter than its {LRBE_HEADER_LEN}-byte header",
-                b.len()
-            ),
+            Rule(33),
+            format!("{} vertices, section MESH says {m}", h.m),
         ));
     }
-    let [mm, m_r, rings, n0, record_units, overflow_rows, _period, reserved] =
-        [0, 1, 2, 3, 4, 5, 6, 7].map(|i| le_u32(b, 4 * i));
-    // [V33] counts and length.
-    if mm != m {
-        return Err(f.err(0, format!("{mm} vertices, section MESH says {m}")));
-    }
-    if reserved != 0 {
-        return Err(f.err(28, "reserved field is not zero"));
+    if h.reserved != 0 {
+        return Err(f.err(28, Rule(33), "reserved field is not zero"));
     }
     if m >= NULL {
         return Err(f.err(
             0,
+            Rule(33),
             format!("{m} vertices exceed the LR limit of {}", NULL - 1),
         ));
     }
     if m_r > m || (m_r == 0) != (rings == 0) || rings as u64 > m_r as u64 / 4 {
         return Err(f.err(
             4,
+            Rule(33),
             format!("{m_r} ring vertices in {rings} rings for {m} vertices (rings have at least 4 vertices)"),
         ));
     }
     if 8 * m_r as u64 + 4 * n0 as u64 >= NONE as u64 {
-        return Err(f.err(12, "corner ids exceed 32 bits"));
+        return Err(f.err(12, Rule(33), "corner ids exceed 32 bits"));
     }
-    let bit_words = if rings > 1 {
-        (m_r as u64).div_ceil(32)
-    } else {
-        0
-    };
-    let word_lengths = [
-        rings as u64 + 1,
-        bit_words,
-        bit_words,
-        m_r as u64,
-        2 * (m_r as u64).div_ceil(1 << BLOCK_SHIFT),
-        (n0 as u64).div_ceil(1 << GROUP_SHIFT),
-        (m - m_r) as u64,
-        OVERFLOW_ROW_WORDS as u64 * overflow_rows as u64,
-    ];
-    let unit_lengths = [T0_ROW_UNITS as u64 * n0 as u64, record_units as u64];
-    f.expect_len(Some(
-        LRBE_HEADER_LEN as u64
-            + 4 * word_lengths.iter().sum::<u64>()
-            + 2 * unit_lengths.iter().sum::<u64>(),
-    ))?;
-    let mut at = LRBE_HEADER_LEN;
-    let mut starts = [0usize; 10];
-    let words = std::array::from_fn::<_, 8, _>(|i| {
-        starts[i] = at;
-        let w = LeWords(&b[at..at + 4 * word_lengths[i] as usize]);
-        at += 4 * word_lengths[i] as usize;
-        w
-    });
-    let units = std::array::from_fn::<_, 2, _>(|i| {
-        starts[8 + i] = at;
-        let u = LeUnits(&b[at..at + 2 * unit_lengths[i] as usize]);
-        at += 2 * unit_lengths[i] as usize;
-        u
-    });
+    let layout = h.layout();
+    f.expect_len(layout.as_ref().map(|l| l.len), Rule(33))?;
+    let layout = layout.expect("checked by expect_len");
+    let arrays: [_; 10] = std::array::from_fn(|i| layout.arrays[i]);
+    let words: [_; 8] = std::array::from_fn(|i| LeWords(&b[arrays[i].start..arrays[i].end()]));
+    let units: [_; 2] =
+        std::array::from_fn(|i| LeUnits(&b[arrays[8 + i].start..arrays[8 + i].end()]));
+    let starts = arrays.map(|a| a.start);
     let [ring_starts, ring_last, ring_rank, pairs, blocks, groups, c, overflow] = words;
     let [t0, records] = units;
-    let word_err = |array: usize, i: usize, message: String| f.err(starts[array] + 4 * i, message);
-    let unit_err = |array: usize, i: usize, message: String| f.err(starts[array] + 2 * i, message);
+    let word_err = |array: usize, i: usize, rule: Rule, message: String| {
+        f.err(starts[array] + 4 * i, rule, message)
+    };
+    let unit_err = |array: usize, i: usize, rule: Rule, message: String| {
+        f.err(starts[array] + 2 * i, rule, message)
+    };
 
     // [V34] rings, as for the standard LR; the bit vectors only with several rings.
-    super::check_rings(
+    check_rings(
         &ring_starts,
-        (rings > 1).then_some((&ring_last, &ring_rank)),
+        h.has_ring_bits().then_some((&ring_last, &ring_rank)),
         m_r,
-        word_err,
+        |array, i, message| word_err(array, i, Rule(34), message),
     )?;
 
-    let tables = CompactTables {
+    let mut tables = CompactTables {
         ring_starts,
         ring_last,
         ring_rank,
@@ -112,6 +90,7 @@ pub(super) fn lr_compact_tables<'a>(
         records,
         m_r,
         m,
+        boundaries_on_ring: false,
     };
 
     // [V35] pairs and records: records tile the record units in ring order, each block's
@@ -124,6 +103,7 @@ pub(super) fn lr_compact_tables<'a>(
             return Err(word_err(
                 4,
                 2 * block,
+                Rule(35),
                 format!(
                     "block {block} starts its records at {}, not {next_record}",
                     blocks.at(2 * block)
@@ -136,6 +116,7 @@ pub(super) fn lr_compact_tables<'a>(
                 return Err(word_err(
                     3,
                     v as usize,
+                    Rule(35),
                     format!("record of pair {v} at {start}, expected {next_record}"),
                 ));
             }
@@ -146,6 +127,7 @@ pub(super) fn lr_compact_tables<'a>(
                     unit_err(
                         9,
                         start.min(records.count()),
+                        Rule(35),
                         format!("record of pair {v} runs past the record units"),
                     )
                 })?;
@@ -153,6 +135,7 @@ pub(super) fn lr_compact_tables<'a>(
                 return Err(word_err(
                     3,
                     v as usize,
+                    Rule(35),
                     format!("pair {v}: IRREGULAR flag and stored opposites disagree"),
                 ));
             }
@@ -165,6 +148,7 @@ pub(super) fn lr_compact_tables<'a>(
                 return Err(word_err(
                     3,
                     v as usize,
+                    Rule(35),
                     format!(
                         "slot {} has tip {tip:#x} ({m} vertices)",
                         2 * v as usize + side
@@ -175,6 +159,7 @@ pub(super) fn lr_compact_tables<'a>(
                 return Err(word_err(
                     3,
                     v as usize,
+                    Rule(35),
                     format!("missing right triangle of pair {v} stores opposites"),
                 ));
             }
@@ -184,6 +169,7 @@ pub(super) fn lr_compact_tables<'a>(
         return Err(unit_err(
             9,
             next_record,
+            Rule(35),
             format!(
                 "{} record units not used by any pair",
                 records.count() - next_record
@@ -202,6 +188,7 @@ pub(super) fn lr_compact_tables<'a>(
                 return Err(unit_err(
                     8,
                     at,
+                    Rule(36),
                     format!("T0 row {j}: malformed overflow row"),
                 ));
             }
@@ -210,6 +197,7 @@ pub(super) fn lr_compact_tables<'a>(
             return Err(unit_err(
                 8,
                 at + 3,
+                Rule(36),
                 format!("T0 row {j}: reserved bits set"),
             ));
         } else if [1, 2].iter().any(|&i| t0.at(at + i) & 0x8000 != 0) {
@@ -217,6 +205,7 @@ pub(super) fn lr_compact_tables<'a>(
             return Err(unit_err(
                 8,
                 at,
+                Rule(36),
                 format!("T0 row {j}: vertex field out of range"),
             ));
         }
@@ -226,6 +215,7 @@ pub(super) fn lr_compact_tables<'a>(
                 return Err(unit_err(
                     8,
                     at,
+                    Rule(36),
                     format!("T0 row {j}: vertex {x} out of range ({m} vertices)"),
                 ));
             }
@@ -235,6 +225,7 @@ pub(super) fn lr_compact_tables<'a>(
         return Err(word_err(
             7,
             0,
+            Rule(36),
             format!(
                 "{} overflow rows not used by any T0 row",
                 overflow_rows - next_overflow
@@ -246,7 +237,12 @@ pub(super) fn lr_compact_tables<'a>(
     for i in 0..(m - m_r) as usize {
         let x = tables.isolated_corner(i as u32);
         if x != NONE && !tables.is_corner(Corner(x)) {
-            return Err(word_err(6, i, format!("{x} is not a corner of the mesh")));
+            return Err(word_err(
+                6,
+                i,
+                Rule(37),
+                format!("{x} is not a corner of the mesh"),
+            ));
         }
     }
     let corner_at = |c: Corner| {
@@ -263,6 +259,10 @@ pub(super) fn lr_compact_tables<'a>(
             starts[6] + 4 * (v - m_r) as usize
         }
     };
-    check_lr_layout(&tables, &f, corner_at, vertex_at)?;
+    check_lr_opposites(&tables, &f, corner_at)?;
+    tables.boundaries_on_ring = find_boundaries_on_ring(&tables);
+    check_vertex_corners(&tables, Rule(23), |v, rule, message| {
+        f.err(vertex_at(v), rule, message)
+    })?;
     Ok(tables)
 }

@@ -2,14 +2,17 @@
 //! adjacent-strips table, validated once by rules V28–V32 of `spec/FORMAT.md` and then read
 //! in place as [`CtsTables`] over the buffer's little-endian words.
 
-use super::{le_u32, Container, Fields};
+use super::fields::Fields;
+use super::lr_rules::check_vertex_corners;
+use super::Sections;
 use crate::corner_table::NONE;
-use crate::error::{Error, Result};
-use crate::format::{Tag, STRP_HEADER_LEN};
-use crate::ids::{Corner, Vertex};
-use crate::lr::{LeWords, Words};
+use crate::error::{Error, Result, Rule};
+use crate::format::layout::StrpHeader;
+use crate::format::Tag;
+use crate::ids::Corner;
 use crate::ops::CornerOps;
 use crate::strips::{CtsTables, DELIMITER};
+use crate::words::{LeWords, Words};
 
 /// The arrays of the section, for error offsets.
 #[derive(Clone, Copy)]
@@ -20,58 +23,52 @@ enum Array {
 }
 
 /// The `STRP` section as tables, after checking every rule the operators rely on.
-pub(super) fn strips_tables<'a>(
-    container: &Container<'a>,
-    m: u32,
-) -> Result<CtsTables<LeWords<'a>>> {
-    let section = *container.required(Tag::STRP)?;
-    let f = Fields { section };
-    let b = section.bytes;
-    if b.len() < STRP_HEADER_LEN {
-        return Err(f.err(
-            0,
-            format!(
-                "{} bytes, shorter than its {STRP_HEADER_LEN}-byte header",
-                b.len()
-            ),
-        ));
-    }
-    let [v, len, r0, r1] = [0, 1, 2, 3].map(|i| le_u32(b, 4 * i));
+pub(super) fn strips_tables<'a>(sections: &Sections<'a>, m: u32) -> Result<CtsTables<LeWords<'a>>> {
+    let f = Fields::new(sections.required(Tag::STRP)?);
+    let b = f.bytes();
     // [V28] counts and length.
+    f.expect_at_least(StrpHeader::LEN, Rule(28))?;
+    let h = StrpHeader::read(b);
+    let (v, len) = (h.m, h.len);
     if v != m {
-        return Err(f.err(0, format!("{v} vertices, section MESH says {m}")));
+        return Err(f.err(0, Rule(28), format!("{v} vertices, section MESH says {m}")));
     }
     if m == DELIMITER {
-        return Err(f.err(0, "vertex ids must stay below the delimiter 0xFFFFFFFF"));
+        return Err(f.err(
+            0,
+            Rule(28),
+            "vertex ids must stay below the delimiter 0xFFFFFFFF",
+        ));
     }
-    if [r0, r1] != [0; 2] {
-        return Err(f.err(8, "reserved fields are not zero"));
+    if h.reserved != [0; 2] {
+        return Err(f.err(8, Rule(28), "reserved fields are not zero"));
     }
     if len % 2 != 0 || 3 * len as u64 >= NONE as u64 {
         return Err(f.err(
             4,
+            Rule(28),
             format!("{len} strip entries: the count must be even and 3 times it below 2^32 - 1"),
         ));
     }
-    f.expect_len(Some(
-        STRP_HEADER_LEN as u64 + 4 * (2 * len as u64 + m as u64),
-    ))?;
+    let layout = h.layout();
+    f.expect_len(layout.as_ref().map(|l| l.len), Rule(28))?;
+    let layout = layout.expect("checked by expect_len");
     let len = len as usize;
     let (t_at, a_at, c_at) = (
-        STRP_HEADER_LEN,
-        STRP_HEADER_LEN + 4 * len,
-        STRP_HEADER_LEN + 8 * len,
+        layout.array("T").start,
+        layout.array("A").start,
+        layout.array("C").start,
     );
     let t = LeWords(&b[t_at..a_at]);
     let a = LeWords(&b[a_at..c_at]);
     let c = LeWords(&b[c_at..]);
-    let err = |array: Array, i: usize, message: String| -> Error {
+    let err = |array: Array, i: usize, rule: Rule, message: String| -> Error {
         let (base, name) = match array {
             Array::T => (t_at, "T"),
             Array::A => (a_at, "A"),
             Array::C => (c_at, "C"),
         };
-        f.err(base + 4 * i, format!("{name}[{i}]: {message}"))
+        f.err(base + 4 * i, rule, format!("{name}[{i}]: {message}"))
     };
 
     // [V29] Layout: strips of at least three vertex ids, each from an even position and padded
@@ -83,6 +80,7 @@ pub(super) fn strips_tables<'a>(
             return Err(err(
                 Array::T,
                 j,
+                Rule(29),
                 "a strip must start here, found a delimiter".into(),
             ));
         }
@@ -92,6 +90,7 @@ pub(super) fn strips_tables<'a>(
                 return Err(err(
                     Array::T,
                     j,
+                    Rule(29),
                     format!("vertex {} out of range ({m} vertices)", t.at(j)),
                 ));
             }
@@ -102,6 +101,7 @@ pub(super) fn strips_tables<'a>(
             return Err(err(
                 Array::T,
                 start,
+                Rule(29),
                 format!("a strip of {run} entries, fewer than 3"),
             ));
         }
@@ -110,6 +110,7 @@ pub(super) fn strips_tables<'a>(
             if j >= len {
                 return Err(f.err(
                     a_at,
+                    Rule(29),
                     format!("T ends inside the padding of the strip at {start}"),
                 ));
             }
@@ -117,6 +118,7 @@ pub(super) fn strips_tables<'a>(
                 return Err(err(
                     Array::T,
                     j,
+                    Rule(29),
                     format!("a strip of {run} entries must be followed by {pad} delimiters"),
                 ));
             }
@@ -139,6 +141,7 @@ pub(super) fn strips_tables<'a>(
             return Err(err(
                 Array::T,
                 start,
+                Rule(29),
                 "a strip must start and end with a triangle, not a swap".into(),
             ));
         }
@@ -146,7 +149,7 @@ pub(super) fn strips_tables<'a>(
             if tables.is_triangle(w) {
                 triangles += 1;
             } else if tables.is_swap(w + 1) {
-                return Err(err(Array::T, w, "two swaps in a row".into()));
+                return Err(err(Array::T, w, Rule(29), "two swaps in a row".into()));
             }
         }
     }
@@ -166,6 +169,7 @@ pub(super) fn strips_tables<'a>(
             return Err(err(
                 Array::A,
                 j,
+                Rule(30),
                 format!("{x} where no operator reads: must be the delimiter"),
             ));
         }
@@ -173,6 +177,7 @@ pub(super) fn strips_tables<'a>(
             return Err(err(
                 Array::A,
                 j,
+                Rule(30),
                 format!("{x} is not the position of a triangle"),
             ));
         }
@@ -198,6 +203,7 @@ pub(super) fn strips_tables<'a>(
                 return Err(err(
                     Array::T,
                     tri.idx(),
+                    Rule(31),
                     format!(
                         "corner {} and its opposite {} do not face each other across one edge",
                         corner.0, o.0
@@ -210,6 +216,7 @@ pub(super) fn strips_tables<'a>(
     if with_opposite != 2 * pairs {
         return Err(f.err(
             a_at,
+            Rule(31),
             format!(
                 "{} corners have an opposite that does not point back",
                 with_opposite - 2 * pairs
@@ -217,34 +224,21 @@ pub(super) fn strips_tables<'a>(
         ));
     }
 
-    // [V32] C: a corner of its vertex, NONE exactly for a vertex no triangle uses.
-    let mut used = vec![false; m as usize];
-    for tri in tables.triangles() {
-        for x in tables.triangle_vertices(tri) {
-            used[x.idx()] = true;
-        }
-    }
-    for (i, &is_used) in used.iter().enumerate() {
+    // [V32] C holds corners of the mesh; then C[v] is a corner of v ([V32]), NONE exactly
+    // for an unused vertex and the start of an open fan ([V38]).
+    for i in 0..c.count() {
         let x = c.at(i);
-        let ok = if x == NONE {
-            !is_used
-        } else {
-            tables.is_corner(Corner(x)) && tables.vertex(Corner(x)) == Vertex(i as u32)
-        };
-        if !ok {
+        if x != NONE && !tables.is_corner(Corner(x)) {
             return Err(err(
                 Array::C,
                 i,
-                format!(
-                    "{x:#x} is not a corner of vertex {i}{}",
-                    if is_used {
-                        ""
-                    } else {
-                        ", which no triangle uses"
-                    }
-                ),
+                Rule(32),
+                format!("{x:#x} is not a corner of the mesh"),
             ));
         }
     }
+    check_vertex_corners(&tables, Rule(32), |v, rule, message| {
+        err(Array::C, v as usize, rule, message)
+    })?;
     Ok(tables)
 }

@@ -45,8 +45,8 @@ use super::{stripify_adjacency, StripOptions, RESTART};
 use crate::corner_table::{CornerTable, NONE};
 use crate::error::{Error, Result};
 use crate::ids::{Corner, Triangle, Vertex};
-use crate::lr::Words;
 use crate::ops::CornerOps;
+use crate::words::Words;
 
 /// Separates strips in `T`; marks "no neighbour" in `A`.
 pub const DELIMITER: u32 = u32::MAX;
@@ -78,6 +78,8 @@ pub struct Cts {
     input_triangle: Vec<u32>,
     /// Vertex -> input vertex.
     input_vertex: Vec<u32>,
+    /// Degenerate input triangles the corner table kept aside.
+    kept_aside: Vec<(u32, [u32; 3])>,
 }
 
 impl Cts {
@@ -85,7 +87,7 @@ impl Cts {
     /// `A` and `C`.
     ///
     /// # Errors
-    /// [`Error::InvalidMesh`] when the corner ids `3j + i` would not fit 32 bits.
+    /// [`Error::Unsupported`] when the corner ids `3j + i` would not fit 32 bits.
     pub fn build(table: &CornerTable, options: &StripOptions) -> Result<Cts> {
         let mut adj = Adjacency::from_corner_table(table);
         let options = StripOptions {
@@ -121,7 +123,7 @@ impl Cts {
             push_strip(tri, &mut std::iter::once(tt));
         }
         if 3 * t.len() as u64 >= NONE as u64 {
-            return Err(Error::InvalidMesh(format!(
+            return Err(Error::Unsupported(format!(
                 "{n} triangles make {} strip entries, too many for 32-bit corner ids",
                 t.len()
             )));
@@ -162,6 +164,12 @@ impl Cts {
                 tables.a[slot] = across;
             }
         }
+        // Each vertex's corner starts its fan, so that swinging from it visits every corner.
+        for v in 0..tables.c.len() {
+            if let Some(c) = Corner::from_stored(tables.c[v]) {
+                tables.c[v] = crate::ops::fan_start(&tables, c).0;
+            }
+        }
         Ok(Cts {
             input_triangle: at
                 .iter()
@@ -177,8 +185,14 @@ impl Cts {
                 .vertices()
                 .map(|v| table.original_vertex(v).0)
                 .collect(),
+            kept_aside: table.kept_aside().to_vec(),
             tables,
         })
+    }
+
+    /// Degenerate input triangles kept aside, with their input ids (as the corner table's).
+    pub fn kept_aside(&self) -> &[(u32, [u32; 3])] {
+        &self.kept_aside
     }
 
     /// The index table `T`, strips separated by [`DELIMITER`]s.

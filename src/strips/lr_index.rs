@@ -13,7 +13,8 @@
 //! would emit), in the LR's vertex numbering: a vertex buffer permuted by
 //! [`Lr::input_vertex`] draws it.
 
-use crate::lr::{Lr, LrLayout, Words};
+use crate::lr::{Lr, LrLayout};
+use crate::words::Words;
 
 /// Offsets of a ring edge's left and right slots.
 const LEFT: usize = 0;

@@ -20,7 +20,7 @@
 use super::adjacency::{Adjacency, Node, ASIDE, DONE};
 use super::{StripOptions, Strips, RESTART};
 use crate::corner_table::NONE;
-use crate::generate::Rng;
+use crate::rng::Rng;
 
 /// The four degree lists, with lazy deletion. List `d` is the triangles whose degree was `d`
 /// from the start, in (rotated) triangle order, under the triangles whose degree dropped to `d`

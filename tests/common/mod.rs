@@ -235,8 +235,8 @@ pub fn assert_same_up_to_rotation(got: &[[u32; 3]], want: &[[u32; 3]], what: &st
 
 /// The sections of a valid container as `(tag, flags, payload)`, in file order, ready to
 /// alter and [`assemble`](lrmesh::write::assemble) again.
-pub fn sections_of(bytes: &[u8]) -> Vec<(lrmesh::format::Tag, u32, Vec<u8>)> {
-    lrmesh::read::Container::parse(bytes, &lrmesh::read::Limits::default())
+pub fn sections_of(bytes: &[u8]) -> Vec<lrmesh::write::SectionBytes> {
+    lrmesh::read::Sections::parse(bytes, &lrmesh::read::Limits::default())
         .unwrap()
         .sections
         .iter()
@@ -254,7 +254,7 @@ pub fn forge_fields(
     tag: lrmesh::format::Tag,
     width: usize,
     values: impl Fn(u32) -> Vec<u32>,
-    mut consistent: impl FnMut(&lrmesh::read::MeshView),
+    mut consistent: impl FnMut(&lrmesh::read::Container),
 ) -> (usize, usize) {
     use lrmesh::read::{open, Limits};
     let sections = sections_of(bytes);

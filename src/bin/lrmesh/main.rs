@@ -498,7 +498,7 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
                     let positions = positions(lr.vertex_id_bound());
                     progress::step("rendering", || render::render(lr, &positions, &options))?
                 } else {
-                    return Err(Error::InvalidMesh(format!(
+                    return Err(Error::Unsupported(format!(
                         "{}: render needs LR connectivity (lr or lr-compact), the file holds {}",
                         mesh.display(),
                         view.summary().connectivity

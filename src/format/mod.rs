@@ -1,0 +1,311 @@
+//! The container's on-disk layer, written once for the reader and the writer: the magic and
+//! versions, the header and section-table records, tags, flags and kind codes as types, the
+//! checksum rule, the metadata record, and for each section the description of its fields
+//! and arrays ([`layout`]). The byte layout is specified in `spec/FORMAT.md`.
+//!
+//! Nothing here validates beyond what a record's shape needs; the rules live in
+//! [`crate::read`].
+
+pub mod layout;
+mod metadata;
+
+pub use metadata::Metadata;
+
+/// The first eight bytes of every container: `\x89LRM\r\n\x1a\n` (a non-ASCII byte, the name,
+/// and the line-ending and end-of-file bytes that transfers in text mode would damage).
+pub const MAGIC: [u8; 8] = [0x89, b'L', b'R', b'M', b'\r', b'\n', 0x1a, b'\n'];
+
+/// Major version written and read. A reader rejects any other major version.
+pub const MAJOR: u16 = 1;
+/// Minor version written. Readers accept any minor version of their major version.
+pub const MINOR: u16 = 0;
+
+/// Size of the fixed header.
+pub const HEADER_LEN: usize = 32;
+/// Size of one section-table entry.
+pub const ENTRY_LEN: usize = 32;
+
+/// Reads the little-endian u16 at `at`. The caller has checked the range.
+pub(crate) fn le_u16(b: &[u8], at: usize) -> u16 {
+    u16::from_le_bytes([b[at], b[at + 1]])
+}
+
+/// Reads the little-endian u32 at `at`. The caller has checked the range.
+pub(crate) fn le_u32(b: &[u8], at: usize) -> u32 {
+    u32::from_le_bytes([b[at], b[at + 1], b[at + 2], b[at + 3]])
+}
+
+/// Reads the little-endian u64 at `at`. The caller has checked the range.
+pub(crate) fn le_u64(b: &[u8], at: usize) -> u64 {
+    (le_u32(b, at) as u64) | (le_u32(b, at + 4) as u64) << 32
+}
+
+/// Reads the little-endian f32 at `at`. The caller has checked the range.
+pub(crate) fn le_f32(b: &[u8], at: usize) -> f32 {
+    f32::from_bits(le_u32(b, at))
+}
+
+/// The fixed 32-byte header (FORMAT.md §2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Header {
+    /// Major version.
+    pub major: u16,
+    /// Minor version.
+    pub minor: u16,
+    /// Number of sections `S`.
+    pub sections: u32,
+    /// Length of the whole file in bytes.
+    pub file_length: u64,
+    /// CRC-32 of the header's first 24 bytes and the section table ([`table_checksum`]).
+    pub table_crc: u32,
+    /// Reserved, 0.
+    pub reserved: u32,
+}
+
+impl Header {
+    /// Offset of the section count.
+    pub const SECTIONS_AT: usize = 12;
+    /// Offset of the file length.
+    pub const FILE_LENGTH_AT: usize = 16;
+    /// Offset of the table checksum.
+    pub const TABLE_CRC_AT: usize = 24;
+    /// Offset of the reserved field.
+    pub const RESERVED_AT: usize = 28;
+
+    /// The header fields of `b`, which holds at least [`HEADER_LEN`] bytes; the magic is not
+    /// checked here.
+    pub fn read(b: &[u8]) -> Header {
+        Header {
+            major: le_u16(b, 8),
+            minor: le_u16(b, 10),
+            sections: le_u32(b, Self::SECTIONS_AT),
+            file_length: le_u64(b, Self::FILE_LENGTH_AT),
+            table_crc: le_u32(b, Self::TABLE_CRC_AT),
+            reserved: le_u32(b, Self::RESERVED_AT),
+        }
+    }
+
+    /// The 32 bytes of the header, magic included.
+    pub fn to_bytes(&self) -> [u8; HEADER_LEN] {
+        let mut out = [0u8; HEADER_LEN];
+        out[..8].copy_from_slice(&MAGIC);
+        out[8..10].copy_from_slice(&self.major.to_le_bytes());
+        out[10..12].copy_from_slice(&self.minor.to_le_bytes());
+        out[12..16].copy_from_slice(&self.sections.to_le_bytes());
+        out[16..24].copy_from_slice(&self.file_length.to_le_bytes());
+        out[24..28].copy_from_slice(&self.table_crc.to_le_bytes());
+        out[28..32].copy_from_slice(&self.reserved.to_le_bytes());
+        out
+    }
+}
+
+/// One 32-byte entry of the section table (FORMAT.md §2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Entry {
+    /// The section's tag.
+    pub tag: Tag,
+    /// Its flags.
+    pub flags: Flags,
+    /// Offset of its first byte from the start of the file.
+    pub offset: u64,
+    /// Its length in bytes.
+    pub length: u64,
+    /// CRC-32 of its bytes.
+    pub crc: u32,
+    /// Reserved, 0.
+    pub reserved: u32,
+}
+
+impl Entry {
+    /// Offset of the flags within an entry.
+    pub const FLAGS_AT: usize = 4;
+    /// Offset of the section offset within an entry.
+    pub const OFFSET_AT: usize = 8;
+    /// Offset of the section length within an entry.
+    pub const LENGTH_AT: usize = 16;
+    /// Offset of the section checksum within an entry.
+    pub const CRC_AT: usize = 24;
+    /// Offset of the reserved field within an entry.
+    pub const RESERVED_AT: usize = 28;
+
+    /// The entry stored at `b[at..at + 32]`, which the caller has checked is in range.
+    pub fn read(b: &[u8], at: usize) -> Entry {
+        Entry {
+            tag: Tag([b[at], b[at + 1], b[at + 2], b[at + 3]]),
+            flags: Flags(le_u32(b, at + Self::FLAGS_AT)),
+            offset: le_u64(b, at + Self::OFFSET_AT),
+            length: le_u64(b, at + Self::LENGTH_AT),
+            crc: le_u32(b, at + Self::CRC_AT),
+            reserved: le_u32(b, at + Self::RESERVED_AT),
+        }
+    }
+
+    /// The 32 bytes of the entry.
+    pub fn to_bytes(&self) -> [u8; ENTRY_LEN] {
+        let mut out = [0u8; ENTRY_LEN];
+        out[..4].copy_from_slice(&self.tag.0);
+        out[4..8].copy_from_slice(&self.flags.0.to_le_bytes());
+        out[8..16].copy_from_slice(&self.offset.to_le_bytes());
+        out[16..24].copy_from_slice(&self.length.to_le_bytes());
+        out[24..28].copy_from_slice(&self.crc.to_le_bytes());
+        out[28..32].copy_from_slice(&self.reserved.to_le_bytes());
+        out
+    }
+}
+
+/// The checksum rule of the header: CRC-32 (ISO-HDLC) of the header's first 24 bytes
+/// followed by the section table.
+pub fn table_checksum(header_and_table: &[u8]) -> u32 {
+    let mut h = crc32fast::Hasher::new();
+    h.update(&header_and_table[..Header::TABLE_CRC_AT]);
+    h.update(&header_and_table[HEADER_LEN..]);
+    h.finalize()
+}
+
+/// The checksum rule of a section: CRC-32 (ISO-HDLC) of its bytes.
+pub fn section_checksum(bytes: &[u8]) -> u32 {
+    crc32fast::hash(bytes)
+}
+
+/// Section flags.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+pub struct Flags(pub u32);
+
+impl Flags {
+    /// No flag.
+    pub const NONE: Flags = Flags(0);
+    /// A reader that does not know the section must reject the file.
+    pub const REQUIRED: Flags = Flags(1);
+
+    /// Whether the REQUIRED bit is set.
+    pub fn is_required(self) -> bool {
+        self.0 & Flags::REQUIRED.0 != 0
+    }
+
+    /// The bits that no version-1 flag defines.
+    pub fn unknown_bits(self) -> u32 {
+        self.0 & !Flags::REQUIRED.0
+    }
+}
+
+/// A four-byte section tag. Open: unknown tags still parse and can be reported.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Tag(pub [u8; 4]);
+
+impl Tag {
+    /// Metadata: a UTF-8 JSON object.
+    pub const META: Tag = Tag(*b"META");
+    /// Counts and the connectivity kind.
+    pub const MESH: Tag = Tag(*b"MESH");
+    /// Positions, per vertex.
+    pub const GEOM: Tag = Tag(*b"GEOM");
+    /// Normals, per vertex.
+    pub const NORM: Tag = Tag(*b"NORM");
+    /// Texture coordinates, per vertex.
+    pub const TEXC: Tag = Tag(*b"TEXC");
+    /// Colors, per vertex.
+    pub const COLR: Tag = Tag(*b"COLR");
+    /// The standard LR tables.
+    pub const LRTB: Tag = Tag(*b"LRTB");
+    /// An Edgebreaker stream (`spec/EDGEBREAKER.md`).
+    pub const EBRK: Tag = Tag(*b"EBRK");
+    /// Constrained triangle strips with the adjacent-strips table (`T`, `A`, `C`).
+    pub const STRP: Tag = Tag(*b"STRP");
+    /// The bit-efficient LR tables.
+    pub const LRBE: Tag = Tag(*b"LRBE");
+    /// Vertex copies made by the pseudo-manifold conversion, with their originals.
+    pub const COPY: Tag = Tag(*b"COPY");
+    /// Degenerate triangles kept aside.
+    pub const KEPT: Tag = Tag(*b"KEPT");
+    /// Permutations back to the input's vertex and triangle order.
+    pub const PERM: Tag = Tag(*b"PERM");
+
+    /// The sections a version-1 reader understands.
+    pub const KNOWN: [Tag; 13] = [
+        Tag::META,
+        Tag::MESH,
+        Tag::GEOM,
+        Tag::NORM,
+        Tag::TEXC,
+        Tag::COLR,
+        Tag::LRTB,
+        Tag::EBRK,
+        Tag::STRP,
+        Tag::LRBE,
+        Tag::COPY,
+        Tag::KEPT,
+        Tag::PERM,
+    ];
+
+    /// Whether a version-1 reader understands the section.
+    pub fn is_known(self) -> bool {
+        Tag::KNOWN.contains(&self)
+    }
+
+    /// The tag as text, with bytes outside printable ASCII escaped.
+    pub fn name(&self) -> String {
+        self.0
+            .iter()
+            .flat_map(|&b| std::ascii::escape_default(b))
+            .map(char::from)
+            .collect()
+    }
+}
+
+impl std::fmt::Display for Tag {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.name())
+    }
+}
+
+/// A connectivity kind (field `kind` of the `MESH` section).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Kind(pub u32);
+
+impl Kind {
+    /// Standard LR in section `LRTB`.
+    pub const LR: Kind = Kind(1);
+    /// Edgebreaker in section `EBRK`.
+    pub const EDGEBREAKER: Kind = Kind(2);
+    /// Constrained triangle strips and the adjacent-strips table in section `STRP`.
+    pub const STRIPS: Kind = Kind(3);
+    /// Bit-efficient LR in section `LRBE`.
+    pub const LR_COMPACT: Kind = Kind(4);
+
+    /// Every kind a version-1 reader knows.
+    pub const ALL: [Kind; 4] = [Kind::LR, Kind::EDGEBREAKER, Kind::STRIPS, Kind::LR_COMPACT];
+
+    /// The section that holds this kind's connectivity; `None` for an unknown kind.
+    pub fn tag(self) -> Option<Tag> {
+        match self {
+            Kind::LR => Some(Tag::LRTB),
+            Kind::EDGEBREAKER => Some(Tag::EBRK),
+            Kind::STRIPS => Some(Tag::STRP),
+            Kind::LR_COMPACT => Some(Tag::LRBE),
+            _ => None,
+        }
+    }
+
+    /// The kind's name as the command line spells it: `lr`, `edgebreaker`, `strips`,
+    /// `lr-compact`; `unknown` otherwise.
+    pub fn name(self) -> &'static str {
+        match self {
+            Kind::LR => "lr",
+            Kind::EDGEBREAKER => "edgebreaker",
+            Kind::STRIPS => "strips",
+            Kind::LR_COMPACT => "lr-compact",
+            _ => "unknown",
+        }
+    }
+}
+
+/// A position encoding (first field of the `GEOM` section).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct PositionEncoding(pub u32);
+
+impl PositionEncoding {
+    /// Three little-endian f32 per vertex.
+    pub const F32: PositionEncoding = PositionEncoding(0);
+    /// A bounding box (six f32: min xyz, max xyz), then three u16 per vertex. Lossy.
+    pub const QUANTIZED16: PositionEncoding = PositionEncoding(1);
+}

@@ -1,0 +1,263 @@
+//! The sections around the connectivity: `META` (V11), `MESH` (V12), `GEOM` (V13), the
+//! per-vertex attributes (V14), `COPY` (V24), `KEPT` (V25) and `PERM` (V26).
+
+use super::fields::{format_error, Fields};
+use super::view::Positions;
+use super::{Limits, Sections};
+use crate::error::{Error, Result, Rule};
+use crate::format::layout::{self, geom, MeshRecord};
+use crate::format::{le_f32, Kind, Metadata, PositionEncoding, Tag};
+use crate::words::{LeWords, Words};
+
+/// The `META` section, if present.
+pub(super) fn metadata(sections: &Sections, limits: &Limits) -> Result<Option<Metadata>> {
+    let Some(s) = sections.section(Tag::META) else {
+        return Ok(None);
+    };
+    if s.bytes.len() as u64 > limits.max_metadata_bytes {
+        return Err(Error::LimitExceeded {
+            what: "metadata size",
+            value: s.bytes.len() as u64,
+            limit: limits.max_metadata_bytes,
+        });
+    }
+    serde_json::from_slice::<Metadata>(s.bytes)
+        .map(Some)
+        .map_err(|e| {
+            format_error(
+                "META",
+                s.offset,
+                Rule(11),
+                format!("not a metadata JSON object: {e}"),
+            )
+        })
+}
+
+/// The `MESH` record, with the rules that need no other section.
+pub(super) fn mesh_record<'a>(sections: &Sections<'a>) -> Result<(MeshRecord, Fields<'a>)> {
+    let f = Fields::new(sections.required(Tag::MESH)?);
+    f.expect_len(Some(MeshRecord::LEN as u64), Rule(12))?;
+    let record = MeshRecord::read(f.bytes());
+    if !Kind::ALL.contains(&record.kind) {
+        return Err(f.err(
+            MeshRecord::KIND_AT,
+            Rule(12),
+            format!("unknown connectivity kind {}", record.kind.0),
+        ));
+    }
+    if record.reserved != 0 {
+        return Err(f.err(
+            MeshRecord::RESERVED_AT,
+            Rule(12),
+            "reserved field is not zero",
+        ));
+    }
+    if record.output_vertices > record.vertices {
+        return Err(f.err(
+            MeshRecord::OUTPUT_VERTICES_AT,
+            Rule(12),
+            format!(
+                "{} output vertices of {}",
+                record.output_vertices, record.vertices
+            ),
+        ));
+    }
+    Ok((record, f))
+}
+
+/// The `GEOM` section's positions for `m` vertices.
+pub(super) fn positions<'a>(sections: &Sections<'a>, m: u32) -> Result<Positions<'a>> {
+    let f = Fields::new(sections.required(Tag::GEOM)?);
+    let rule = Rule(13);
+    let m = m as u64;
+    let encoding = PositionEncoding(f.u32(0, rule)?);
+    let positions = match encoding {
+        PositionEncoding::F32 => {
+            let len = m
+                .checked_mul(geom::F32_VERTEX_LEN)
+                .and_then(|x| x.checked_add(geom::HEADER_LEN as u64));
+            f.expect_len(len, rule)?;
+            f.expect_finite(geom::HEADER_LEN..f.len(), rule)?;
+            Positions::F32(&f.bytes()[geom::HEADER_LEN..])
+        }
+        PositionEncoding::QUANTIZED16 => {
+            let data_at = geom::HEADER_LEN + geom::BOX_LEN;
+            let len = m
+                .checked_mul(geom::Q16_VERTEX_LEN)
+                .and_then(|x| x.checked_add(data_at as u64));
+            f.expect_len(len, rule)?;
+            f.expect_finite(geom::HEADER_LEN..data_at, rule)?;
+            let b = f.bytes();
+            let lo: [f32; 3] = std::array::from_fn(|i| le_f32(b, geom::HEADER_LEN + 4 * i));
+            let hi: [f32; 3] = std::array::from_fn(|i| le_f32(b, geom::HEADER_LEN + 12 + 4 * i));
+            if let Some(i) = (0..3).find(|&i| lo[i] > hi[i]) {
+                return Err(f.err(
+                    geom::HEADER_LEN + 4 * i,
+                    rule,
+                    "bounding box minimum above its maximum",
+                ));
+            }
+            Positions::Quantized16 {
+                lo,
+                hi,
+                data: &b[data_at..],
+            }
+        }
+        other => {
+            return Err(f.err(0, rule, format!("unknown position encoding {}", other.0)));
+        }
+    };
+    if f.u32(4, rule)? != 0 {
+        return Err(f.err(4, rule, "reserved field is not zero"));
+    }
+    Ok(positions)
+}
+
+/// A per-vertex attribute section of `size` bytes a vertex, if present.
+pub(super) fn attribute<'a>(
+    sections: &Sections<'a>,
+    tag: Tag,
+    m: u32,
+    size: u64,
+    floats: bool,
+) -> Result<Option<&'a [u8]>> {
+    let Some(section) = sections.section(tag) else {
+        return Ok(None);
+    };
+    let f = Fields::new(*section);
+    f.expect_len((m as u64).checked_mul(size), Rule(14))?;
+    if floats {
+        f.expect_finite(0..f.len(), Rule(14))?;
+    }
+    Ok(Some(section.bytes))
+}
+
+/// Every per-vertex attribute section: normals, texture coordinates, colors.
+pub(super) fn attributes<'a>(sections: &Sections<'a>, m: u32) -> Result<[Option<&'a [u8]>; 3]> {
+    Ok([
+        attribute(sections, Tag::NORM, m, layout::attribute::NORMAL_LEN, true)?,
+        attribute(
+            sections,
+            Tag::TEXC,
+            m,
+            layout::attribute::TEXCOORD_LEN,
+            true,
+        )?,
+        attribute(sections, Tag::COLR, m, layout::attribute::COLOR_LEN, false)?,
+    ])
+}
+
+/// The `(copy, original)` pairs of `COPY` (empty without it).
+pub(super) fn copies<'a>(sections: &Sections<'a>, m: u32) -> Result<LeWords<'a>> {
+    let Some(section) = sections.section(Tag::COPY) else {
+        return Ok(LeWords::default());
+    };
+    let f = Fields::new(*section);
+    let rule = Rule(24);
+    let k = f.u32(0, rule)? as u64;
+    let at = layout::copy::HEADER_LEN;
+    f.expect_len(
+        k.checked_mul(4 * layout::copy::PAIR_WORDS)
+            .and_then(|x| x.checked_add(at as u64)),
+        rule,
+    )?;
+    let words = LeWords(&section.bytes[at..]);
+    let mut is_copy = vec![false; m as usize];
+    let mut previous = None;
+    for i in 0..k as usize {
+        let (copy, original) = (words.at(2 * i), words.at(2 * i + 1));
+        if copy >= m || original >= m || previous.is_some_and(|p| copy <= p) {
+            return Err(f.err(
+                at + 8 * i,
+                rule,
+                format!(
+                    "bad copy pair ({copy}, {original}): ids must be below {m}, copies increasing"
+                ),
+            ));
+        }
+        is_copy[copy as usize] = true;
+        previous = Some(copy);
+    }
+    for i in 0..k as usize {
+        if is_copy[words.at(2 * i + 1) as usize] {
+            return Err(f.err(
+                at + 8 * i + 4,
+                rule,
+                "the original of a copy is itself a copy",
+            ));
+        }
+    }
+    Ok(words)
+}
+
+/// The triangles of `KEPT`, three vertices each (empty without it).
+pub(super) fn kept<'a>(sections: &Sections<'a>, m: u32) -> Result<LeWords<'a>> {
+    let Some(section) = sections.section(Tag::KEPT) else {
+        return Ok(LeWords::default());
+    };
+    let f = Fields::new(*section);
+    let rule = Rule(25);
+    let k = f.u32(0, rule)? as u64;
+    let at = layout::kept::HEADER_LEN;
+    f.expect_len(
+        k.checked_mul(4 * layout::kept::TRIANGLE_WORDS)
+            .and_then(|x| x.checked_add(at as u64)),
+        rule,
+    )?;
+    let words = LeWords(&section.bytes[at..]);
+    if let Some(i) = (0..words.count()).find(|&i| words.at(i) >= m) {
+        return Err(f.err(
+            at + 4 * i,
+            rule,
+            format!("vertex {} out of range ({m} vertices)", words.at(i)),
+        ));
+    }
+    Ok(words)
+}
+
+/// The vertex and triangle permutations of `PERM`, if present, for `w` output vertices and
+/// `t` triangles.
+pub(super) fn perm<'a>(
+    sections: &Sections<'a>,
+    w: u32,
+    t: u64,
+) -> Result<Option<(LeWords<'a>, LeWords<'a>)>> {
+    let Some(section) = sections.section(Tag::PERM) else {
+        return Ok(None);
+    };
+    let f = Fields::new(*section);
+    let rule = Rule(26);
+    let (nv, nt) = (f.u32(0, rule)?, f.u32(4, rule)?);
+    if nv != w || nt as u64 != t {
+        return Err(f.err(
+            0,
+            rule,
+            format!("permutations of {nv} vertices and {nt} triangles, the mesh has {w} and {t}"),
+        ));
+    }
+    let at = layout::perm::HEADER_LEN;
+    f.expect_len(Some(at as u64 + 4 * (nv as u64 + nt as u64)), rule)?;
+    let split = at + 4 * nv as usize;
+    let vertices = LeWords(&section.bytes[at..split]);
+    let triangles = LeWords(&section.bytes[split..]);
+    check_permutation(&f, at, vertices)?;
+    check_permutation(&f, split, triangles)?;
+    Ok(Some((vertices, triangles)))
+}
+
+fn check_permutation(f: &Fields, at: usize, words: LeWords) -> Result<()> {
+    let n = words.count();
+    let mut seen = vec![false; n];
+    for i in 0..n {
+        let x = words.at(i) as usize;
+        if x >= n || seen[x] {
+            return Err(f.err(
+                at + 4 * i,
+                Rule(26),
+                format!("{x} breaks a permutation of 0..{n}"),
+            ));
+        }
+        seen[x] = true;
+    }
+    Ok(())
+}

@@ -1,0 +1,162 @@
+//! The `LRTB` section (connectivity kind 1): the standard LR tables, validated once by rules
+//! V15–V23 and V38 of `spec/FORMAT.md` and read in place as [`LrTables`] over the buffer's
+//! little-endian words.
+
+use super::fields::Fields;
+use super::lr_rules::{check_lr_opposites, check_rings, check_vertex_corners};
+use super::Sections;
+use crate::corner_table::NONE;
+use crate::error::{Result, Rule};
+use crate::format::layout::LrtbHeader;
+use crate::format::Tag;
+use crate::ids::Corner;
+use crate::lr::{find_boundaries_on_ring, LrLayout, LrTables, IRREGULAR, NULL, VALUE, WART};
+use crate::words::{LeWords, Words};
+
+/// The `LRTB` section as tables, after checking every rule the operators rely on.
+pub(super) fn lr_tables<'a>(sections: &Sections<'a>, m: u32) -> Result<LrTables<LeWords<'a>>> {
+    let f = Fields::new(sections.required(Tag::LRTB)?);
+    // [V15] counts and length.
+    f.expect_at_least(LrtbHeader::LEN, Rule(15))?;
+    let h = LrtbHeader::read(f.bytes());
+    let (m_r, rings, records) = (h.m_r, h.rings, h.records);
+    if h.m != m {
+        return Err(f.err(
+            0,
+            Rule(15),
+            format!("{} vertices, section MESH says {m}", h.m),
+        ));
+    }
+    if h.reserved != [0; 3] {
+        return Err(f.err(20, Rule(15), "reserved fields are not zero"));
+    }
+    if m >= NULL {
+        return Err(f.err(
+            0,
+            Rule(15),
+            format!("{m} vertices exceed the LR limit of {}", NULL - 1),
+        ));
+    }
+    if m_r > m || (m_r == 0) != (rings == 0) || rings as u64 > m_r as u64 / 4 {
+        return Err(f.err(4, Rule(15), format!("{m_r} ring vertices in {rings} rings for {m} vertices (rings have at least 4 vertices)")));
+    }
+    if 8 * m_r as u64 + 4 * h.t0 as u64 >= NONE as u64 || records >= NULL {
+        return Err(f.err(12, Rule(15), "corner ids exceed 32 bits"));
+    }
+    let layout = h.layout();
+    f.expect_len(layout.as_ref().map(|l| l.len), Rule(15))?;
+    let layout = layout.expect("checked by expect_len");
+    let arrays: [_; 8] = std::array::from_fn(|i| layout.arrays[i]);
+    let [ring_starts, ring_last, ring_rank, lr, vo_v, vo_o, vo_star, c] =
+        arrays.map(|a| LeWords(&f.bytes()[a.start..a.end()]));
+    let word_err = |array: usize, i: usize, rule: Rule, message: String| {
+        f.err(arrays[array].at(i), rule, message)
+    };
+    // Where a corner's triangle is stored: its LR entry, or its VO row.
+    let corner_at = |c: Corner| {
+        if c.0 >= 8 * m_r {
+            arrays[4].at((c.0 - c.0 / 4 - 6 * m_r) as usize)
+        } else {
+            arrays[3].at(2 * (c.0 as usize >> 3) + ((c.0 as usize >> 2) & 1))
+        }
+    };
+
+    // [V16] rings: starts increasing by at least 4 from 0 to m_r; bits and ranks as derived.
+    check_rings(
+        &ring_starts,
+        Some((&ring_last, &ring_rank)),
+        m_r,
+        |array, i, message| word_err(array, i, Rule(16), message),
+    )?;
+
+    let mut tables = LrTables {
+        lr,
+        vo_v,
+        vo_o,
+        vo_star,
+        c,
+        ring_starts,
+        ring_last,
+        ring_rank,
+        m_r,
+        m,
+        boundaries_on_ring: false,
+    };
+
+    // [V17] entries: values in range, NULL only as a right tip, each record used once.
+    let mut record_used = vec![false; records as usize];
+    for slot in 0..2 * m_r as usize {
+        let e = lr.at(slot);
+        let value = e & VALUE;
+        let bad = |message: String| {
+            Err(word_err(
+                3,
+                slot,
+                Rule(17),
+                format!("entry {e:#x} of slot {slot}: {message}"),
+            ))
+        };
+        if e & IRREGULAR != 0 {
+            if value >= records || record_used[value as usize] {
+                return bad(format!(
+                    "record {value} missing or used twice ({records} records)"
+                ));
+            }
+            record_used[value as usize] = true;
+            if vo_star.at(3 * value as usize) >= m {
+                return bad(format!(
+                    "record tip {} out of range",
+                    vo_star.at(3 * value as usize)
+                ));
+            }
+        } else if value >= m && !(value == NULL && slot % 2 == 1 && e & WART == 0) {
+            return bad(format!("vertex {value} out of range ({m} vertices)"));
+        }
+    }
+    if let Some(i) = record_used.iter().position(|&u| !u) {
+        return Err(word_err(
+            6,
+            3 * i,
+            Rule(17),
+            format!("record {i} is not used by any entry"),
+        ));
+    }
+    // [V18]
+    if let Some(i) = (0..vo_v.count()).find(|&i| vo_v.at(i) >= m) {
+        return Err(word_err(
+            4,
+            i,
+            Rule(18),
+            format!("vertex {} out of range ({m} vertices)", vo_v.at(i)),
+        ));
+    }
+    // [V20] stored corners are canonical corners or NONE.
+    let corner_ok = |x: u32| x == NONE || tables.is_corner(Corner(x));
+    for (array, words) in [(5, vo_o), (6, vo_star), (7, c)] {
+        for i in 0..words.count() {
+            // VO* records start with a tip vertex, checked above.
+            let is_tip = array == 6 && i % 3 == 0;
+            if !is_tip && !corner_ok(words.at(i)) {
+                return Err(word_err(
+                    array,
+                    i,
+                    Rule(20),
+                    format!("{} is not a corner of the mesh", words.at(i)),
+                ));
+            }
+        }
+    }
+
+    // [V19], [V21], [V22]; then [V23] and [V38] with the fan rule the file allows.
+    check_lr_opposites(&tables, &f, corner_at)?;
+    tables.boundaries_on_ring = find_boundaries_on_ring(&tables);
+    check_vertex_corners(&tables, Rule(23), |v, rule, message| {
+        let at = if v < m_r {
+            arrays[3].at(2 * v as usize)
+        } else {
+            arrays[7].at((v - m_r) as usize)
+        };
+        f.err(at, rule, message)
+    })?;
+    Ok(tables)
+}

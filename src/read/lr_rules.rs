@@ -1,0 +1,198 @@
+//! The rules every LR layout keeps, standard or bit-efficient: rings (V16, V34), the slots
+//! the operators jump to (V19), non-degenerate triangles (V21), `c.o` an involution across
+//! one edge (V22), `v.c` a corner of `v` (V23) that starts its fan (V38). Together they make
+//! every operator answer a valid id and every swing and contour walk terminate.
+
+use super::fields::Fields;
+use crate::error::{Error, Result, Rule};
+use crate::ids::{Corner, Vertex};
+use crate::lr::LrLayout;
+use crate::ops::CornerOps;
+use crate::words::Words;
+
+/// [V16] ring starts increase by at least 4 from 0 to `m_r`, and the ring-end bits and ranks
+/// (when the layout stores them) are the ones the starts imply. `err(array, word, message)`
+/// locates an error in array 0 (starts), 1 (bits) or 2 (ranks).
+pub(super) fn check_rings<W: Words>(
+    ring_starts: &W,
+    bits: Option<(&W, &W)>,
+    m_r: u32,
+    err: impl Fn(usize, usize, String) -> Error,
+) -> Result<()> {
+    if m_r == 0 {
+        return match ring_starts.at(0) {
+            0 => Ok(()),
+            _ => Err(err(
+                0,
+                0,
+                "ring starts of an empty ring set must be [0]".into(),
+            )),
+        };
+    }
+    let starts: Vec<u32> = (0..ring_starts.count())
+        .map(|i| ring_starts.at(i))
+        .collect();
+    for i in 0..starts.len() {
+        let ok = if i == 0 {
+            starts[0] == 0
+        } else {
+            starts[i] >= starts[i - 1].saturating_add(4)
+                && (i + 1 < starts.len() || starts[i] == m_r)
+        };
+        if !ok {
+            return Err(err(
+                0,
+                i,
+                format!("ring start {} breaks the ring rules", starts[i]),
+            ));
+        }
+    }
+    let Some((ring_last, ring_rank)) = bits else {
+        return Ok(());
+    };
+    let (last, rank) = crate::lr::ring_bits(&starts);
+    for (i, &w) in last.iter().enumerate() {
+        if ring_last.at(i) != w {
+            return Err(err(
+                1,
+                i,
+                "ring-end bits do not match the ring starts".into(),
+            ));
+        }
+        if ring_rank.at(i) != rank[i] {
+            return Err(err(
+                2,
+                i,
+                "ring ranks do not match the ring-end bits".into(),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// [V19], [V21] and [V22] for any LR layout. `corner_at` gives the section offset that
+/// stores a corner's triangle, for errors. The vertex corners come after, once the reader
+/// knows whether the boundaries run along the ring ([`check_vertex_corners`]).
+pub(super) fn check_lr_opposites<T: LrLayout>(
+    tables: &T,
+    f: &Fields,
+    corner_at: impl Fn(Corner) -> usize,
+) -> Result<()> {
+    let corner_err = |c: Corner, rule: Rule, message: String| f.err(corner_at(c), rule, message);
+    for slot in 0..2 * tables.ring_vertices() as usize {
+        let (v, side) = ((slot / 2) as u32, slot % 2);
+        if (tables.redundant(v, side) || tables.wart(v, side))
+            && !tables.slot_is_triangle(tables.ring_next(v), side)
+        {
+            return Err(corner_err(
+                Corner(8 * v + 4 * side as u32),
+                Rule(19),
+                format!(
+                    "slot {slot} points to slot {} which holds no canonical triangle",
+                    2 * tables.ring_next(v) as usize + side
+                ),
+            ));
+        }
+    }
+    // c.o is an involution: each pair is checked once, from its smaller corner, and the pairs
+    // must account for every corner that has an opposite (a corner whose opposite does not
+    // point back would be left over).
+    let (mut with_opposite, mut pairs) = (0u64, 0u64);
+    for t in tables.triangles() {
+        let corners = tables.triangle_corners(t);
+        let vertices = corners.map(|c| tables.vertex(c));
+        if vertices[0] == vertices[1] || vertices[1] == vertices[2] || vertices[0] == vertices[2] {
+            return Err(corner_err(
+                corners[0],
+                Rule(21),
+                format!("triangle {} is degenerate {vertices:?}", t.0),
+            ));
+        }
+        for c in corners {
+            let Some(o) = tables.opposite(c) else {
+                continue;
+            };
+            with_opposite += 1;
+            if o.0 < c.0 {
+                continue;
+            }
+            if !tables.is_corner(o)
+                || tables.opposite(o) != Some(c)
+                || tables.vertex(tables.next(o)) != tables.vertex(tables.prev(c))
+                || tables.vertex(tables.prev(o)) != tables.vertex(tables.next(c))
+            {
+                return Err(corner_err(
+                    c,
+                    Rule(22),
+                    format!(
+                        "corner {} and its opposite {} do not face each other across one edge",
+                        c.0, o.0
+                    ),
+                ));
+            }
+            pairs += 1;
+        }
+    }
+    if with_opposite != 2 * pairs {
+        return Err(f.err(
+            0,
+            Rule(22),
+            format!(
+                "{} corners have an opposite that does not point back",
+                with_opposite - 2 * pairs
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// [V23] (strips: [V32]) `v.c.v = v` and [V38] `v.c` is `NONE` exactly for a vertex no triangle uses, and
+/// starts the vertex's fan when the fan is open. Needs [V22] first, so that fans are chains
+/// or cycles.
+pub(super) fn check_vertex_corners<M: CornerOps>(
+    mesh: &M,
+    corner_rule: Rule,
+    err: impl Fn(u32, Rule, String) -> Error,
+) -> Result<()> {
+    let n = mesh.vertex_id_bound() as usize;
+    // 1: used; 2: its fan is open.
+    let mut marks = vec![0u8; n];
+    for c in mesh.corners() {
+        let v = mesh.vertex(c).idx();
+        marks[v] |= 1;
+        if mesh.unswing(c).is_none() {
+            marks[v] |= 2;
+        }
+    }
+    for v in mesh.vertices() {
+        let (used, open) = (marks[v.idx()] & 1 != 0, marks[v.idx()] & 2 != 0);
+        let Some(c) = mesh.vertex_corner(v) else {
+            if used {
+                return Err(err(
+                    v.0,
+                    Rule(38),
+                    format!("vertex {v} has triangles but no corner"),
+                ));
+            }
+            continue;
+        };
+        if mesh.vertex(c) != Vertex(v.0) {
+            return Err(err(
+                v.0,
+                corner_rule,
+                format!(
+                    "the corner of vertex {v} is a corner of vertex {}",
+                    mesh.vertex(c).0
+                ),
+            ));
+        }
+        if open && mesh.unswing(c).is_some() {
+            return Err(err(
+                v.0,
+                Rule(38),
+                format!("corner {c} of vertex {v} does not start its open fan"),
+            ));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,234 @@
+//! What a container holds, for reports (`lrmesh info FILE.lrm`).
+
+use super::{Connectivity, Container};
+use crate::format::{Metadata, Tag, HEADER_LEN};
+use crate::lr::LrLayout;
+use crate::ops::CornerOps;
+use crate::words::Words;
+
+/// One line of a container's section table, for reports.
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
+pub struct SectionSummary {
+    /// The section's tag.
+    pub tag: String,
+    /// Whether readers must understand it.
+    pub required: bool,
+    /// Offset of its first byte.
+    pub offset: u64,
+    /// Its length in bytes.
+    pub length: u64,
+}
+
+/// What a container holds (`lrmesh info FILE.lrm`). JSON keys are the field names.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct ContainerSummary {
+    /// `major.minor`.
+    pub version: String,
+    /// Total size in bytes.
+    pub bytes: u64,
+    /// The section table.
+    pub sections: Vec<SectionSummary>,
+    /// Connectivity kind: `lr`, `edgebreaker` or `strips`.
+    pub connectivity: &'static str,
+    /// Vertices once copies are merged back (the input's vertex count).
+    pub vertices: u32,
+    /// Vertices of the connectivity, pseudo-manifold copies included.
+    pub connectivity_vertices: u32,
+    /// Triangles, kept-aside degenerate ones included.
+    pub triangles: u64,
+    /// Degenerate triangles kept aside.
+    pub kept_triangles: u32,
+    /// Vertex copies made by the pseudo-manifold conversion.
+    pub vertex_copies: u32,
+    /// LR only: ring vertices.
+    pub ring_vertices: Option<u32>,
+    /// LR only: rings.
+    pub rings: Option<u32>,
+    /// LR only: T0 triangles in VO.
+    pub t0_triangles: Option<u32>,
+    /// LR only: VO* records (irregular triangles).
+    pub irregular_triangles: Option<u32>,
+    /// Bytes of connectivity: the connectivity section, COPY and KEPT.
+    pub connectivity_bytes: u64,
+    /// Connectivity bits per triangle.
+    pub connectivity_bpt: f64,
+    /// References per triangle: of the LR tables (LR paper, section 8), or of the strips'
+    /// `T`, `A` and `C`; none for Edgebreaker.
+    pub rpt: Option<f64>,
+    /// Positions stored as 16-bit integers (lossy).
+    pub quantized: bool,
+    /// Per-vertex attributes present: `normals`, `texcoords`, `colors`.
+    pub attributes: Vec<&'static str>,
+    /// Whether the input's vertex and triangle order is stored.
+    pub keeps_order: bool,
+    /// The metadata, if any.
+    pub metadata: Option<Metadata>,
+}
+
+impl Container<'_> {
+    /// A summary of the container for reports.
+    pub fn summary(&self) -> ContainerSummary {
+        let section_len = |tag: Tag| {
+            self.sections
+                .section(tag)
+                .map_or(0, |s| s.bytes.len() as u64)
+        };
+        let connectivity_bytes = section_len(Tag::LRTB)
+            + section_len(Tag::EBRK)
+            + section_len(Tag::STRP)
+            + section_len(Tag::LRBE)
+            + section_len(Tag::COPY)
+            + section_len(Tag::KEPT);
+        let triangles = self.triangles as u64 + (self.kept.count() / 3) as u64;
+        let per_triangle = |x: f64| {
+            if triangles == 0 {
+                0.0
+            } else {
+                x / triangles as f64
+            }
+        };
+        let lr = self.lr();
+        let compact = self.lr_compact();
+        let rpt = match &self.connectivity {
+            Connectivity::Lr(lr) => {
+                let m_r = lr.ring_vertices();
+                let refs = 2 * m_r as u64
+                    + 6 * lr.t0_count() as u64
+                    + 3 * lr.record_count() as u64
+                    + (lr.m - m_r) as u64;
+                Some(per_triangle(refs as f64))
+            }
+            // T, A and C, one reference an entry.
+            Connectivity::Strips(strips) => Some(per_triangle(
+                (2 * strips.len() as u64 + strips.vertex_id_bound() as u64) as f64,
+            )),
+            Connectivity::Edgebreaker(_) | Connectivity::LrCompact(_) => None,
+        };
+        let mut attributes = Vec::new();
+        for (present, name) in [
+            (self.normals.is_some(), "normals"),
+            (self.texcoords.is_some(), "texcoords"),
+            (self.colors.is_some(), "colors"),
+        ] {
+            if present {
+                attributes.push(name);
+            }
+        }
+        ContainerSummary {
+            version: format!("{}.{}", self.sections.major, self.sections.minor),
+            bytes: self
+                .sections
+                .sections
+                .last()
+                .map_or(HEADER_LEN as u64, |s| s.offset + s.bytes.len() as u64),
+            sections: self
+                .sections
+                .sections
+                .iter()
+                .map(|s| SectionSummary {
+                    tag: s.tag.name(),
+                    required: s.flags.is_required(),
+                    offset: s.offset,
+                    length: s.bytes.len() as u64,
+                })
+                .collect(),
+            connectivity: self.connectivity.name(),
+            vertices: self.output_vertices,
+            connectivity_vertices: self.vertices,
+            triangles,
+            kept_triangles: (self.kept.count() / 3) as u32,
+            vertex_copies: (self.copies.count() / 2) as u32,
+            ring_vertices: lr
+                .map(|lr| lr.ring_vertices())
+                .or(compact.map(|lr| lr.ring_vertices())),
+            rings: lr
+                .map(|lr| lr.ring_count() as u32)
+                .or(compact.map(|lr| lr.ring_count() as u32)),
+            t0_triangles: lr
+                .map(|lr| lr.t0_count())
+                .or(compact.map(|lr| lr.t0_count())),
+            irregular_triangles: lr.map(|lr| lr.record_count()),
+            connectivity_bytes,
+            connectivity_bpt: per_triangle(8.0 * connectivity_bytes as f64),
+            rpt,
+            quantized: self.is_quantized(),
+            attributes,
+            keeps_order: self.perm.is_some(),
+            metadata: self.metadata.clone(),
+        }
+    }
+}
+
+impl std::fmt::Display for ContainerSummary {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        writeln!(
+            f,
+            "lrmesh container, version {}, {} bytes",
+            self.version, self.bytes
+        )?;
+        writeln!(f, "sections:")?;
+        for s in &self.sections {
+            let required = if s.required { "required" } else { "optional" };
+            writeln!(
+                f,
+                "  {:<4}  {required}  offset {:>10}  length {:>10}",
+                s.tag, s.offset, s.length
+            )?;
+        }
+        writeln!(f, "connectivity             {}", self.connectivity)?;
+        writeln!(
+            f,
+            "vertices                 {} ({} in the connectivity, {} copies)",
+            self.vertices, self.connectivity_vertices, self.vertex_copies
+        )?;
+        writeln!(
+            f,
+            "triangles                {} ({} kept aside)",
+            self.triangles, self.kept_triangles
+        )?;
+        if let (Some(rings), Some(ring_vertices)) = (self.rings, self.ring_vertices) {
+            writeln!(
+                f,
+                "rings                    {rings} through {ring_vertices} vertices"
+            )?;
+        }
+        if let (Some(t0), Some(irregular)) = (self.t0_triangles, self.irregular_triangles) {
+            writeln!(f, "T0 / irregular           {t0} / {irregular}")?;
+        }
+        write!(
+            f,
+            "connectivity             {} bytes, {:.2} bits/triangle",
+            self.connectivity_bytes, self.connectivity_bpt
+        )?;
+        match self.rpt {
+            Some(rpt) => writeln!(f, ", {rpt:.3} references/triangle")?,
+            None => writeln!(f)?,
+        }
+        writeln!(
+            f,
+            "positions                {}",
+            if self.quantized {
+                "16-bit quantized (lossy)"
+            } else {
+                "f32"
+            }
+        )?;
+        let attributes = if self.attributes.is_empty() {
+            "none".to_string()
+        } else {
+            self.attributes.join(", ")
+        };
+        writeln!(f, "attributes               {attributes}")?;
+        writeln!(f, "input order kept         {}", self.keeps_order)?;
+        if let Some(m) = &self.metadata {
+            writeln!(f, "generator                {}", m.generator)?;
+            if let Some(source) = &m.source {
+                writeln!(f, "source                   {source}")?;
+            }
+            for (k, v) in &m.extra {
+                writeln!(f, "  {k}: {v}")?;
+            }
+        }
+        Ok(())
+    }
+}

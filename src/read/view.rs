@@ -1,0 +1,420 @@
+//! The validated container: every table borrowed from the buffer, the connectivity answering
+//! the corner operators in place (Edgebreaker decoded once into a corner table), the
+//! attributes read on demand, and the map back to the input's vertex ids.
+
+use super::{counts, edgebreaker, lr, lr_compact, strips, Limits, Sections};
+use crate::corner_table::CornerTable;
+use crate::error::{Result, Rule};
+use crate::format::{le_f32, Kind, Metadata};
+use crate::ids::{Corner, Triangle, Vertex};
+use crate::lr::{CompactTables, LrLayout, LrTables};
+use crate::ops::CornerOps;
+use crate::strips::CtsTables;
+use crate::words::{LeUnits, LeWords, Words};
+
+/// Positions as stored.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Positions<'a> {
+    /// Three f32 per vertex.
+    F32(&'a [u8]),
+    /// A bounding box and three u16 per vertex (lossy).
+    Quantized16 {
+        /// Minimum corner of the box.
+        lo: [f32; 3],
+        /// Maximum corner of the box.
+        hi: [f32; 3],
+        /// The coordinates.
+        data: &'a [u8],
+    },
+}
+
+/// The connectivity of a validated container. It implements [`CornerOps`] for every kind,
+/// so that a caller need not match on it; the variants give the representation's own
+/// tables for what only they offer.
+///
+/// # Panics
+/// Its operators panic when given a corner that is not a corner of the mesh (see
+/// [`Connectivity::is_corner`]), rather than answer something made up; vertex and triangle
+/// ids must be below the bounds.
+#[derive(Debug, Clone)]
+pub enum Connectivity<'a> {
+    /// Standard LR tables, answering the corner operators on the buffer.
+    Lr(LrTables<LeWords<'a>>),
+    /// Edgebreaker, decoded when the container was opened: triangles in decode order.
+    Edgebreaker(Box<CornerTable>),
+    /// Constrained triangle strips and the adjacent-strips table, answering the corner
+    /// operators on the buffer.
+    Strips(CtsTables<LeWords<'a>>),
+    /// Bit-efficient LR tables, answering the corner operators on the buffer.
+    LrCompact(CompactTables<LeWords<'a>, LeUnits<'a>>),
+}
+
+/// Runs `$body` with `$t` bound to the variant's tables.
+macro_rules! each {
+    ($self:expr, $t:ident => $body:expr) => {
+        match $self {
+            Connectivity::Lr($t) => $body,
+            Connectivity::Edgebreaker($t) => $body,
+            Connectivity::Strips($t) => $body,
+            Connectivity::LrCompact($t) => $body,
+        }
+    };
+}
+
+impl Connectivity<'_> {
+    /// The connectivity kind.
+    pub fn kind(&self) -> Kind {
+        match self {
+            Connectivity::Lr(_) => Kind::LR,
+            Connectivity::Edgebreaker(_) => Kind::EDGEBREAKER,
+            Connectivity::Strips(_) => Kind::STRIPS,
+            Connectivity::LrCompact(_) => Kind::LR_COMPACT,
+        }
+    }
+
+    /// The connectivity kind's name: `lr`, `edgebreaker`, `strips` or `lr-compact`.
+    pub fn name(&self) -> &'static str {
+        self.kind().name()
+    }
+
+    /// Whether `c` is a corner of the mesh (ids of some kinds have gaps).
+    pub fn is_corner(&self, c: Corner) -> bool {
+        match self {
+            Connectivity::Lr(t) => t.is_corner(c),
+            Connectivity::Edgebreaker(t) => c.0 < 3 * t.triangle_id_bound(),
+            Connectivity::Strips(t) => t.is_corner(c),
+            Connectivity::LrCompact(t) => t.is_corner(c),
+        }
+    }
+
+    fn checked(&self, c: Corner) -> Corner {
+        assert!(
+            self.is_corner(c),
+            "corner {c} is not a corner of this {} mesh",
+            self.name()
+        );
+        c
+    }
+
+    /// Number of triangles the connectivity holds.
+    pub fn triangle_count(&self) -> u64 {
+        self.triangles().count() as u64
+    }
+
+    /// The triangles as container vertex ids, in the order of `spec/FORMAT.md` section 4:
+    /// increasing triangle id, each as `(t.c.v, t.c.n.v, t.c.p.v)`.
+    pub(super) fn for_each_triangle(&self, mut f: impl FnMut([u32; 3])) {
+        each!(self, t => t
+            .triangles()
+            .for_each(|tri| f(t.triangle_vertices(tri).map(|v| v.0))))
+    }
+}
+
+impl CornerOps for Connectivity<'_> {
+    fn vertex_id_bound(&self) -> u32 {
+        each!(self, t => t.vertex_id_bound())
+    }
+    fn triangle_id_bound(&self) -> u32 {
+        each!(self, t => t.triangle_id_bound())
+    }
+    fn triangles(&self) -> impl Iterator<Item = Triangle> + '_ {
+        let it: Box<dyn Iterator<Item = Triangle> + '_> = each!(self, t => Box::new(t.triangles()));
+        it
+    }
+    fn vertices(&self) -> impl Iterator<Item = Vertex> + '_ {
+        let it: Box<dyn Iterator<Item = Vertex> + '_> = each!(self, t => Box::new(t.vertices()));
+        it
+    }
+    fn vertex(&self, c: Corner) -> Vertex {
+        let c = self.checked(c);
+        each!(self, t => t.vertex(c))
+    }
+    fn triangle(&self, c: Corner) -> Triangle {
+        let c = self.checked(c);
+        each!(self, t => t.triangle(c))
+    }
+    fn next(&self, c: Corner) -> Corner {
+        let c = self.checked(c);
+        each!(self, t => t.next(c))
+    }
+    fn prev(&self, c: Corner) -> Corner {
+        let c = self.checked(c);
+        each!(self, t => t.prev(c))
+    }
+    fn opposite(&self, c: Corner) -> Option<Corner> {
+        let c = self.checked(c);
+        each!(self, t => t.opposite(c))
+    }
+    fn vertex_corner(&self, v: Vertex) -> Option<Corner> {
+        assert!(v.0 < self.vertex_id_bound(), "vertex {v} out of range");
+        each!(self, t => t.vertex_corner(v))
+    }
+    fn triangle_corner(&self, t: Triangle) -> Corner {
+        each!(self, x => x.triangle_corner(t))
+    }
+}
+
+/// A validated container: the tables borrowed from the buffer, the connectivity answering
+/// the corner operators in place. Made by [`crate::open`] or [`super::open`].
+#[derive(Debug, Clone)]
+pub struct Container<'a> {
+    /// The container's sections.
+    pub sections: Sections<'a>,
+    /// The metadata, if the file has a `META` section.
+    pub metadata: Option<Metadata>,
+    pub(super) connectivity: Connectivity<'a>,
+    /// Container vertices (copies included).
+    pub(super) vertices: u32,
+    pub(super) positions: Positions<'a>,
+    pub(super) normals: Option<&'a [u8]>,
+    pub(super) texcoords: Option<&'a [u8]>,
+    pub(super) colors: Option<&'a [u8]>,
+    /// `(copy, original)` pairs, copies increasing.
+    pub(super) copies: LeWords<'a>,
+    /// Kept-aside triangles, three vertices each.
+    pub(super) kept: LeWords<'a>,
+    /// Vertex then triangle permutations to the input order.
+    pub(super) perm: Option<(LeWords<'a>, LeWords<'a>)>,
+    pub(super) output_vertices: u32,
+    pub(super) triangles: u32,
+}
+
+impl<'a> Container<'a> {
+    /// Validates the sections' contents (every rule after V10).
+    pub(super) fn new(sections: Sections<'a>, limits: &Limits) -> Result<Container<'a>> {
+        let metadata = counts::metadata(&sections, limits)?;
+        let (mesh, mesh_fields) = counts::mesh_record(&sections)?;
+        let m = mesh.vertices;
+        let positions = counts::positions(&sections, m)?;
+        let [normals, texcoords, colors] = counts::attributes(&sections, m)?;
+        let connectivity = match mesh.kind {
+            Kind::LR => Connectivity::Lr(lr::lr_tables(&sections, m)?),
+            Kind::STRIPS => Connectivity::Strips(strips::strips_tables(&sections, m)?),
+            Kind::LR_COMPACT => {
+                Connectivity::LrCompact(lr_compact::lr_compact_tables(&sections, m)?)
+            }
+            _ => Connectivity::Edgebreaker(Box::new(edgebreaker::edgebreaker_table(
+                &sections, m, limits,
+            )?)),
+        };
+        let held = connectivity.triangle_count();
+        if held != mesh.triangles as u64 {
+            return Err(mesh_fields.err(
+                8,
+                Rule(12),
+                format!(
+                    "{} triangles, the connectivity holds {held}",
+                    mesh.triangles
+                ),
+            ));
+        }
+        let copies = counts::copies(&sections, m)?;
+        let copy_count = (copies.count() / 2) as u32;
+        if m - copy_count != mesh.output_vertices {
+            return Err(mesh_fields.err(
+                4,
+                Rule(12),
+                format!(
+                    "{} output vertices, but {m} vertices with {copy_count} copies",
+                    mesh.output_vertices
+                ),
+            ));
+        }
+        let kept = counts::kept(&sections, m)?;
+        if (kept.count() / 3) as u32 != mesh.kept {
+            return Err(mesh_fields.err(
+                12,
+                Rule(12),
+                format!(
+                    "{} kept triangles, section KEPT holds {}",
+                    mesh.kept,
+                    kept.count() / 3
+                ),
+            ));
+        }
+        let total = mesh.triangles as u64 + mesh.kept as u64;
+        let perm = counts::perm(&sections, mesh.output_vertices, total)?;
+        Ok(Container {
+            sections,
+            metadata,
+            connectivity,
+            vertices: m,
+            positions,
+            normals,
+            texcoords,
+            colors,
+            copies,
+            kept,
+            perm,
+            output_vertices: mesh.output_vertices,
+            triangles: mesh.triangles,
+        })
+    }
+
+    /// The connectivity, answering the corner operators for every kind.
+    pub fn connectivity(&self) -> &Connectivity<'a> {
+        &self.connectivity
+    }
+
+    /// The connectivity kind.
+    pub fn kind(&self) -> Kind {
+        self.connectivity.kind()
+    }
+
+    /// The standard LR tables, when the container holds them.
+    pub fn lr(&self) -> Option<&LrTables<LeWords<'a>>> {
+        match &self.connectivity {
+            Connectivity::Lr(lr) => Some(lr),
+            _ => None,
+        }
+    }
+
+    /// The bit-efficient LR tables, when the container holds them.
+    pub fn lr_compact(&self) -> Option<&CompactTables<LeWords<'a>, LeUnits<'a>>> {
+        match &self.connectivity {
+            Connectivity::LrCompact(lr) => Some(lr),
+            _ => None,
+        }
+    }
+
+    /// The constrained strips and adjacent-strips table, when the container holds them.
+    pub fn strips(&self) -> Option<&CtsTables<LeWords<'a>>> {
+        match &self.connectivity {
+            Connectivity::Strips(strips) => Some(strips),
+            _ => None,
+        }
+    }
+
+    /// Number of connectivity triangles (kept-aside ones not included).
+    pub fn triangle_count(&self) -> u32 {
+        self.triangles
+    }
+
+    /// Number of degenerate triangles kept aside.
+    pub fn kept_triangle_count(&self) -> u32 {
+        (self.kept.count() / 3) as u32
+    }
+
+    /// Number of container vertices: those of the connectivity, copies included.
+    pub fn connectivity_vertex_count(&self) -> u32 {
+        self.vertices
+    }
+
+    /// Number of vertices once copies are merged back (the decoded mesh's).
+    pub fn output_vertex_count(&self) -> u32 {
+        self.output_vertices
+    }
+
+    /// Whether positions are stored quantized (lossy).
+    pub fn is_quantized(&self) -> bool {
+        matches!(self.positions, Positions::Quantized16 { .. })
+    }
+
+    /// Whether the file stores the input's vertex and triangle order.
+    pub fn keeps_order(&self) -> bool {
+        self.perm.is_some()
+    }
+
+    fn check_vertex(&self, v: Vertex) -> usize {
+        assert!(
+            v.0 < self.vertices,
+            "vertex {v} out of range ({} vertices)",
+            self.vertices
+        );
+        v.idx()
+    }
+
+    /// The position of container vertex `v` (dequantized when stored as 16-bit: FORMAT.md
+    /// §3.3).
+    ///
+    /// # Panics
+    /// When `v` is not below [`Container::connectivity_vertex_count`].
+    pub fn position(&self, v: Vertex) -> [f32; 3] {
+        let i = self.check_vertex(v);
+        match self.positions {
+            Positions::F32(b) => [0, 1, 2].map(|k| le_f32(b, 12 * i + 4 * k)),
+            Positions::Quantized16 { lo, hi, data } => [0, 1, 2].map(|k| {
+                let at = 6 * i + 2 * k;
+                let q = u16::from_le_bytes([data[at], data[at + 1]]) as f64;
+                (lo[k] as f64 + q / 65535.0 * (hi[k] as f64 - lo[k] as f64)) as f32
+            }),
+        }
+    }
+
+    /// Every container vertex's position, in container vertex order.
+    pub fn positions(&self) -> Vec<[f32; 3]> {
+        (0..self.vertices)
+            .map(|v| self.position(Vertex(v)))
+            .collect()
+    }
+
+    /// The normal of container vertex `v`, when the file has normals.
+    ///
+    /// # Panics
+    /// When `v` is not below [`Container::connectivity_vertex_count`].
+    pub fn normal(&self, v: Vertex) -> Option<[f32; 3]> {
+        let i = self.check_vertex(v);
+        self.normals
+            .map(|b| [0, 1, 2].map(|k| le_f32(b, 12 * i + 4 * k)))
+    }
+
+    /// The texture coordinates of container vertex `v`, when the file has them.
+    ///
+    /// # Panics
+    /// When `v` is not below [`Container::connectivity_vertex_count`].
+    pub fn texcoord(&self, v: Vertex) -> Option<[f32; 2]> {
+        let i = self.check_vertex(v);
+        self.texcoords
+            .map(|b| [0, 1].map(|k| le_f32(b, 8 * i + 4 * k)))
+    }
+
+    /// The RGBA color of container vertex `v`, when the file has colors.
+    ///
+    /// # Panics
+    /// When `v` is not below [`Container::connectivity_vertex_count`].
+    pub fn color(&self, v: Vertex) -> Option<[u8; 4]> {
+        let i = self.check_vertex(v);
+        self.colors.map(|b| [0, 1, 2, 3].map(|k| b[4 * i + k]))
+    }
+
+    /// The vertex of the decoded mesh ([`Container::to_mesh`]) that container vertex `v`
+    /// becomes: copies merge into their originals.
+    ///
+    /// # Panics
+    /// When `v` is not below [`Container::connectivity_vertex_count`].
+    pub fn output_vertex(&self, v: Vertex) -> u32 {
+        self.check_vertex(v);
+        let pairs = self.copies.count() / 2;
+        let copy_at = |i: usize| self.copies.at(2 * i);
+        // Copies below x, by binary search over the increasing copy ids.
+        let below = |x: u32| {
+            let (mut lo, mut hi) = (0, pairs);
+            while lo < hi {
+                let mid = (lo + hi) / 2;
+                if copy_at(mid) < x {
+                    lo = mid + 1;
+                } else {
+                    hi = mid;
+                }
+            }
+            lo
+        };
+        let i = below(v.0);
+        let original = if i < pairs && copy_at(i) == v.0 {
+            self.copies.at(2 * i + 1)
+        } else {
+            v.0
+        };
+        original - below(original) as u32
+    }
+
+    /// The input's id of container vertex `v`, when the file stores the input order
+    /// (`--keep-order`); `None` otherwise, since the order is then not recorded.
+    ///
+    /// # Panics
+    /// When `v` is not below [`Container::connectivity_vertex_count`].
+    pub fn input_vertex(&self, v: Vertex) -> Option<u32> {
+        let output = self.output_vertex(v);
+        self.perm.map(|(vertices, _)| vertices.at(output as usize))
+    }
+}

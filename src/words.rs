@@ -1,0 +1,68 @@
+//! Tables as arrays of fixed-size integers, owned (`Vec`) or read in place from
+//! little-endian bytes: the storage that every representation's tables are generic over, so
+//! that the same operator code runs on a built structure and on a loaded file.
+
+/// An array of 32-bit words: a vector, or little-endian bytes read in place.
+pub trait Words {
+    /// Word `i`. Panics when `i` is out of range; validation guarantees it never is.
+    fn at(&self, i: usize) -> u32;
+    /// Number of words.
+    fn count(&self) -> usize;
+}
+
+impl Words for Vec<u32> {
+    #[inline(always)]
+    fn at(&self, i: usize) -> u32 {
+        self[i]
+    }
+    fn count(&self) -> usize {
+        self.len()
+    }
+}
+
+/// Little-endian 32-bit words in a byte slice, read without assuming alignment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct LeWords<'a>(pub(crate) &'a [u8]);
+
+impl Words for LeWords<'_> {
+    #[inline(always)]
+    fn at(&self, i: usize) -> u32 {
+        let b = &self.0[4 * i..4 * i + 4];
+        u32::from_le_bytes([b[0], b[1], b[2], b[3]])
+    }
+    fn count(&self) -> usize {
+        self.0.len() / 4
+    }
+}
+
+/// An array of 16-bit units: a vector, or little-endian bytes read in place.
+pub trait Units {
+    /// Unit `i`. Panics when `i` is out of range; validation guarantees it never is.
+    fn at(&self, i: usize) -> u16;
+    /// Number of units.
+    fn count(&self) -> usize;
+}
+
+impl Units for Vec<u16> {
+    #[inline(always)]
+    fn at(&self, i: usize) -> u16 {
+        self[i]
+    }
+    fn count(&self) -> usize {
+        self.len()
+    }
+}
+
+/// Little-endian 16-bit units in a byte slice.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct LeUnits<'a>(pub(crate) &'a [u8]);
+
+impl Units for LeUnits<'_> {
+    #[inline(always)]
+    fn at(&self, i: usize) -> u16 {
+        u16::from_le_bytes([self.0[2 * i], self.0[2 * i + 1]])
+    }
+    fn count(&self) -> usize {
+        self.0.len() / 2
+    }
+}

@@ -1,0 +1,174 @@
+//! The connectivity sections, each laid out from its description in
+//! [`crate::format::layout`], with the maps from container ids back to the input's.
+
+use crate::corner_table::CornerTable;
+use crate::edgebreaker;
+use crate::error::Result;
+use crate::format::layout::{write_fields, Layout, LrbeHeader, LrtbHeader, StrpHeader};
+use crate::format::{Kind, Tag};
+use crate::ids::{Triangle, Vertex};
+use crate::lr::{CompactLr, Lr, LrLayout};
+use crate::ops::CornerOps;
+use crate::strips::Cts;
+
+/// A connectivity section and how its vertices and triangles relate to the input.
+pub(super) struct Encoded {
+    pub kind: Kind,
+    pub tag: Tag,
+    pub payload: Vec<u8>,
+    /// Container vertex -> input vertex (several for a split vertex).
+    pub input_vertex: Vec<u32>,
+    /// The connectivity's triangles, in its order -> input triangle.
+    pub input_triangle: Vec<u32>,
+}
+
+/// Appends each array in layout order, checking that its length is the one the header's
+/// counts describe (the reader slices the section with the same layout).
+fn write_arrays(out: &mut Vec<u8>, layout: &Layout, words: &[&[u32]], units: &[&[u16]]) {
+    let widths = words
+        .iter()
+        .map(|w| (w.len(), 4))
+        .chain(units.iter().map(|u| (u.len(), 2)));
+    for (array, (len, width)) in layout.arrays.iter().zip(widths) {
+        debug_assert_eq!(
+            (array.len, array.width),
+            (len, width),
+            "array {}",
+            array.name
+        );
+    }
+    for w in words {
+        write_fields(out, w);
+    }
+    for u in units {
+        for x in u.iter() {
+            out.extend_from_slice(&x.to_le_bytes());
+        }
+    }
+    debug_assert_eq!(out.len() as u64, layout.len);
+}
+
+/// The `LRTB` section of a built LR.
+pub(super) fn lr_section(lr: &Lr) -> Encoded {
+    let t = lr.tables();
+    let header = LrtbHeader {
+        m: t.m,
+        m_r: t.m_r,
+        rings: t.ring_count() as u32,
+        t0: t.t0_count(),
+        records: t.record_count(),
+        reserved: [0; 3],
+    };
+    let layout = header.layout().expect("a built LR fits its layout");
+    let mut p = header.to_bytes();
+    write_arrays(
+        &mut p,
+        &layout,
+        &[
+            &t.ring_starts,
+            &t.ring_last,
+            &t.ring_rank,
+            &t.lr,
+            &t.vo_v,
+            &t.vo_o,
+            &t.vo_star,
+            &t.c,
+        ],
+        &[],
+    );
+    Encoded {
+        kind: Kind::LR,
+        tag: Tag::LRTB,
+        payload: p,
+        input_vertex: (0..lr.vertex_id_bound())
+            .map(|v| lr.input_vertex(Vertex(v)))
+            .collect(),
+        input_triangle: lr.triangles().map(|t| lr.input_triangle(t)).collect(),
+    }
+}
+
+/// The `LRBE` section of a built bit-efficient LR.
+pub(super) fn lr_compact_section(lr: &CompactLr) -> Encoded {
+    let t = lr.tables();
+    let header = lr_compact_header(lr);
+    let layout = header.layout().expect("a built LR fits its layout");
+    let mut p = header.to_bytes();
+    write_arrays(
+        &mut p,
+        &layout,
+        &[
+            &t.ring_starts,
+            &t.ring_last,
+            &t.ring_rank,
+            &t.pairs,
+            &t.blocks,
+            &t.groups,
+            &t.c,
+            &t.overflow,
+        ],
+        &[&t.t0, &t.records],
+    );
+    Encoded {
+        kind: Kind::LR_COMPACT,
+        tag: Tag::LRBE,
+        payload: p,
+        input_vertex: (0..t.vertex_id_bound())
+            .map(|v| lr.input_vertex(Vertex(v)))
+            .collect(),
+        input_triangle: t.triangles().map(|tri| lr.input_triangle(tri)).collect(),
+    }
+}
+
+/// The `LRBE` header of a built bit-efficient LR.
+pub(crate) fn lr_compact_header(lr: &CompactLr) -> LrbeHeader {
+    let t = lr.tables();
+    LrbeHeader {
+        m: t.m,
+        m_r: t.m_r,
+        rings: t.ring_count() as u32,
+        t0: t.t0_count(),
+        record_units: t.record_units(),
+        overflow_rows: t.overflow_rows(),
+        period: lr.period(),
+        reserved: 0,
+    }
+}
+
+/// The `EBRK` section of a corner table.
+pub(super) fn edgebreaker_section(table: &CornerTable) -> Result<Encoded> {
+    let encoded = edgebreaker::encode(table)?;
+    Ok(Encoded {
+        kind: Kind::EDGEBREAKER,
+        tag: Tag::EBRK,
+        payload: encoded.bytes,
+        input_vertex: encoded
+            .vertex_order
+            .iter()
+            .map(|&v| table.original_vertex(Vertex(v)).0)
+            .collect(),
+        input_triangle: encoded
+            .triangle_order
+            .iter()
+            .map(|&t| table.input_triangle(Triangle(t)))
+            .collect(),
+    })
+}
+
+/// The `STRP` section of built strips.
+pub(super) fn strips_section(cts: &Cts) -> Encoded {
+    let header = StrpHeader {
+        m: cts.vertex_id_bound(),
+        len: cts.t().len() as u32,
+        reserved: [0; 2],
+    };
+    let layout = header.layout().expect("built strips fit their layout");
+    let mut p = header.to_bytes();
+    write_arrays(&mut p, &layout, &[cts.t(), cts.a(), cts.c()], &[]);
+    Encoded {
+        kind: Kind::STRIPS,
+        tag: Tag::STRP,
+        payload: p,
+        input_vertex: cts.vertices().map(|v| cts.input_vertex(v)).collect(),
+        input_triangle: cts.triangles().map(|t| cts.input_triangle(t)).collect(),
+    }
+}

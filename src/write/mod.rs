@@ -1,0 +1,314 @@
+//! Writing containers: a mesh in, `.lrm` bytes out (layout: `spec/FORMAT.md`), from the mesh
+//! alone or from a corner table or LR already built, into a buffer or any writer.
+//!
+//! Encoding is deterministic: the same mesh and options give the same bytes, and no Cargo
+//! feature changes them.
+
+mod assemble;
+mod connectivity;
+
+pub use assemble::{assemble, write_sections, SectionBytes};
+
+use crate::corner_table::CornerTable;
+use crate::error::{Error, Result};
+use crate::format::layout::{geom, write_fields, MeshRecord};
+use crate::format::{Flags, Metadata, PositionEncoding, Tag};
+use crate::lr::{CompactLr, CompactOptions, Lr, LrOptions};
+use crate::strips::{Cts, StripOptions};
+use crate::Mesh;
+use connectivity::Encoded;
+
+/// The connectivity representation a container holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Connectivity {
+    /// Standard LR (section `LRTB`): random access, corner queries on the buffer.
+    #[default]
+    Lr,
+    /// Edgebreaker (section `EBRK`): the smallest, decoded sequentially.
+    Edgebreaker,
+    /// Constrained triangle strips with the adjacent-strips table (section `STRP`): a
+    /// rendering index list that also answers corner queries on the buffer.
+    Strips,
+    /// Bit-efficient LR (section `LRBE`): about 16 bits per triangle plus the irregular
+    /// ones, corner queries on the buffer.
+    LrCompact,
+}
+
+/// How to encode.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct EncodeOptions {
+    /// The connectivity representation.
+    pub connectivity: Connectivity,
+    /// Options of the LR construction.
+    pub lr: LrOptions,
+    /// Periods of HYBRID-RING-EXPANDER tried for [`Connectivity::LrCompact`] (0: depth
+    /// first); the smallest result is stored.
+    pub periods: Vec<u32>,
+    /// Options of the stripper, for [`Connectivity::Strips`] (fans are never used).
+    pub strips: StripOptions,
+    /// Store the permutations back to the input's vertex and triangle order.
+    pub keep_order: bool,
+    /// Store positions as 16-bit integers in the bounding box (lossy) instead of f32.
+    pub quantize16: bool,
+    /// The metadata to store.
+    pub metadata: Metadata,
+}
+
+impl Default for EncodeOptions {
+    fn default() -> Self {
+        EncodeOptions {
+            connectivity: Connectivity::Lr,
+            lr: LrOptions::default(),
+            periods: CompactOptions::default().periods,
+            strips: StripOptions::default(),
+            keep_order: false,
+            quantize16: false,
+            metadata: Metadata {
+                generator: format!("lrmesh {}", env!("CARGO_PKG_VERSION")),
+                ..Metadata::default()
+            },
+        }
+    }
+}
+
+/// A connectivity already built, so that encoding builds nothing twice.
+#[derive(Debug, Clone, Copy)]
+pub enum Built<'a> {
+    /// A corner table of the mesh: the connectivity `options` choose is built from it.
+    Table(&'a CornerTable),
+    /// A standard LR of the mesh, stored as it is.
+    Lr(&'a Lr),
+    /// A bit-efficient LR of the mesh, stored as it is.
+    LrCompact(&'a CompactLr),
+    /// Strips of the mesh, stored as they are.
+    Strips(&'a Cts),
+}
+
+/// Encodes `mesh` with the connectivity `options` choose.
+///
+/// # Errors
+/// [`Error::InvalidMesh`] for a mesh that breaks [`Mesh::validate`];
+/// [`Error::Unsupported`] when it exceeds the representation's limits.
+pub fn encode(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<u8>> {
+    mesh.validate()?;
+    let table = CornerTable::from_mesh(mesh)?;
+    encode_built(mesh, Built::Table(&table), options)
+}
+
+/// Encodes `mesh` into `out` (a file, a socket, a buffer), as [`encode`].
+///
+/// # Errors
+/// As [`encode`], and [`Error::Io`] (with an empty path) when writing fails.
+pub fn encode_to(
+    out: &mut impl std::io::Write,
+    mesh: &Mesh,
+    options: &EncodeOptions,
+) -> Result<()> {
+    mesh.validate()?;
+    let table = CornerTable::from_mesh(mesh)?;
+    let sections = sections(mesh, Built::Table(&table), options)?;
+    write_sections(out, &sections).map_err(|source| Error::Io {
+        path: Default::default(),
+        source,
+    })
+}
+
+/// Encodes `mesh` with a connectivity already built from it (`built` must come from this
+/// mesh: a corner table of its triangles, or an LR or strips built from such a table).
+/// With [`Built::Table`], `options.connectivity` chooses what is built; otherwise `built`
+/// decides and the construction options are not used.
+///
+/// # Errors
+/// As [`encode`]; [`Error::InvalidArgument`] when `built` does not have the mesh's vertex
+/// and triangle counts.
+pub fn encode_built(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<u8>> {
+    mesh.validate()?;
+    Ok(assemble(&sections(mesh, built, options)?))
+}
+
+/// The connectivity section of `built`.
+fn connectivity(built: Built, options: &EncodeOptions) -> Result<Encoded> {
+    Ok(match built {
+        Built::Lr(lr) => connectivity::lr_section(lr),
+        Built::LrCompact(lr) => connectivity::lr_compact_section(lr),
+        Built::Strips(cts) => connectivity::strips_section(cts),
+        Built::Table(table) => match options.connectivity {
+            Connectivity::Lr => connectivity::lr_section(&Lr::build(table, &options.lr)?),
+            Connectivity::Edgebreaker => connectivity::edgebreaker_section(table)?,
+            Connectivity::Strips => {
+                connectivity::strips_section(&Cts::build(table, &options.strips)?)
+            }
+            Connectivity::LrCompact => connectivity::lr_compact_section(&CompactLr::build(
+                table,
+                &CompactOptions {
+                    lr: options.lr,
+                    periods: options.periods.clone(),
+                },
+            )?),
+        },
+    })
+}
+
+/// Every section of the container, in the order this crate writes them.
+fn sections(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<SectionBytes>> {
+    let kept = match built {
+        Built::Table(t) => t.kept_aside(),
+        Built::Lr(lr) => lr.kept_aside(),
+        Built::LrCompact(lr) => lr.kept_aside(),
+        Built::Strips(cts) => cts.kept_aside(),
+    };
+    let encoded = connectivity(built, options)?;
+    let m = encoded.input_vertex.len() as u32;
+    let per_vertex = |v: u32| encoded.input_vertex[v as usize] as usize;
+    let triangle_total = encoded.input_triangle.len() + kept.len();
+    if encoded
+        .input_vertex
+        .iter()
+        .any(|&v| v as usize >= mesh.positions.len())
+        || triangle_total != mesh.triangles.len()
+    {
+        return Err(Error::InvalidArgument(format!(
+            "the connectivity given has {triangle_total} triangles over input vertices up to {}, the mesh {} triangles and {} vertices",
+            encoded.input_vertex.iter().max().map_or(0, |&v| v + 1),
+            mesh.triangles.len(),
+            mesh.positions.len()
+        )));
+    }
+
+    // The first container vertex of each input vertex is its original; later ones are copies.
+    let mut primary = vec![u32::MAX; mesh.positions.len()];
+    for (v, &input) in encoded.input_vertex.iter().enumerate() {
+        if primary[input as usize] == u32::MAX {
+            primary[input as usize] = v as u32;
+        }
+    }
+    let copies: Vec<(u32, u32)> = (0..m)
+        .map(|v| (v, primary[per_vertex(v)]))
+        .filter(|&(v, original)| original != v)
+        .collect();
+
+    let mut sections: Vec<SectionBytes> = Vec::new();
+    let meta = serde_json::to_vec(&options.metadata)
+        .map_err(|e| Error::Internal(format!("metadata does not serialise: {e}")))?;
+    sections.push((Tag::META, Flags::NONE, meta));
+
+    let output_vertices = m - copies.len() as u32;
+    let record = MeshRecord {
+        vertices: m,
+        output_vertices,
+        triangles: encoded.input_triangle.len() as u32,
+        kept: kept.len() as u32,
+        kind: encoded.kind,
+        reserved: 0,
+    };
+    sections.push((Tag::MESH, Flags::REQUIRED, record.to_bytes()));
+    sections.push((
+        Tag::GEOM,
+        Flags::REQUIRED,
+        positions(mesh, m, &per_vertex, options.quantize16),
+    ));
+
+    let floats = |values: &mut dyn Iterator<Item = f32>| -> Vec<u8> {
+        values.flat_map(f32::to_le_bytes).collect()
+    };
+    if let Some(normals) = &mesh.normals {
+        let bytes = floats(&mut (0..m).flat_map(|v| normals[per_vertex(v)]));
+        sections.push((Tag::NORM, Flags::NONE, bytes));
+    }
+    if let Some(texcoords) = &mesh.texcoords {
+        let bytes = floats(&mut (0..m).flat_map(|v| texcoords[per_vertex(v)]));
+        sections.push((Tag::TEXC, Flags::NONE, bytes));
+    }
+    if let Some(colors) = &mesh.colors {
+        let bytes = (0..m).flat_map(|v| colors[per_vertex(v)]).collect();
+        sections.push((Tag::COLR, Flags::NONE, bytes));
+    }
+
+    sections.push((encoded.tag, Flags::REQUIRED, encoded.payload));
+
+    if !copies.is_empty() {
+        let mut p = Vec::new();
+        write_fields(&mut p, &[copies.len() as u32]);
+        for &(copy, original) in &copies {
+            write_fields(&mut p, &[copy, original]);
+        }
+        sections.push((Tag::COPY, Flags::REQUIRED, p));
+    }
+    if !kept.is_empty() {
+        let mut p = Vec::new();
+        write_fields(&mut p, &[kept.len() as u32]);
+        for (_, tri) in kept {
+            write_fields(&mut p, &tri.map(|x| primary[x as usize]));
+        }
+        sections.push((Tag::KEPT, Flags::REQUIRED, p));
+    }
+    if options.keep_order {
+        // Output order: non-copy vertices in container order; the connectivity's triangles in
+        // its order, then the kept ones.
+        let mut p = Vec::new();
+        write_fields(&mut p, &[output_vertices, triangle_total as u32]);
+        let vertices: Vec<u32> = (0..m)
+            .filter(|&v| primary[per_vertex(v)] == v)
+            .map(|v| per_vertex(v) as u32)
+            .collect();
+        write_fields(&mut p, &vertices);
+        write_fields(&mut p, &encoded.input_triangle);
+        let kept_inputs: Vec<u32> = kept.iter().map(|&(input, _)| input).collect();
+        write_fields(&mut p, &kept_inputs);
+        sections.push((Tag::PERM, Flags::NONE, p));
+    }
+    Ok(sections)
+}
+
+/// The `GEOM` section: f32 positions, or 16-bit ones in the bounding box.
+fn positions(mesh: &Mesh, m: u32, per_vertex: &dyn Fn(u32) -> usize, quantize16: bool) -> Vec<u8> {
+    let mut p = Vec::new();
+    if quantize16 {
+        let (lo, hi) = bounding_box(&mesh.positions);
+        write_fields(&mut p, &[PositionEncoding::QUANTIZED16.0, 0]);
+        p.extend(lo.iter().chain(&hi).flat_map(|x| x.to_le_bytes()));
+        debug_assert_eq!(p.len(), geom::HEADER_LEN + geom::BOX_LEN);
+        for v in 0..m {
+            for x in quantize(mesh.positions[per_vertex(v)], lo, hi) {
+                p.extend_from_slice(&x.to_le_bytes());
+            }
+        }
+    } else {
+        write_fields(&mut p, &[PositionEncoding::F32.0, 0]);
+        p.extend(
+            (0..m)
+                .flat_map(|v| mesh.positions[per_vertex(v)])
+                .flat_map(f32::to_le_bytes),
+        );
+    }
+    p
+}
+
+fn bounding_box(positions: &[[f32; 3]]) -> ([f32; 3], [f32; 3]) {
+    if positions.is_empty() {
+        return ([0.0; 3], [0.0; 3]);
+    }
+    positions
+        .iter()
+        .fold(([f32::MAX; 3], [f32::MIN; 3]), |(lo, hi), p| {
+            (
+                [0, 1, 2].map(|i| lo[i].min(p[i])),
+                [0, 1, 2].map(|i| hi[i].max(p[i])),
+            )
+        })
+}
+
+/// 16-bit coordinates of `p` in the box: `round((p - lo) / (hi - lo) * 65535)`, 0 where the
+/// box is flat.
+fn quantize(p: [f32; 3], lo: [f32; 3], hi: [f32; 3]) -> [u16; 3] {
+    [0, 1, 2].map(|i| {
+        let extent = hi[i] as f64 - lo[i] as f64;
+        if extent > 0.0 {
+            ((p[i] as f64 - lo[i] as f64) / extent * 65535.0)
+                .round()
+                .clamp(0.0, 65535.0) as u16
+        } else {
+            0
+        }
+    })
+}
