@@ -378,7 +378,8 @@ impl<'a> Container<'a> {
     }
 
     /// The vertex of the decoded mesh ([`Container::to_mesh`]) that container vertex `v`
-    /// becomes: copies merge into their originals.
+    /// becomes: copies merge into their originals, and with a stored input order this is the
+    /// input's vertex id.
     ///
     /// # Panics
     /// When `v` is not below [`Container::connectivity_vertex_count`].
@@ -405,7 +406,11 @@ impl<'a> Container<'a> {
         } else {
             v.0
         };
-        original - below(original) as u32
+        let output = original - below(original) as u32;
+        match self.perm {
+            Some((vertices, _)) => vertices.at(output as usize),
+            None => output,
+        }
     }
 
     /// The input's id of container vertex `v`, when the file stores the input order
@@ -415,6 +420,6 @@ impl<'a> Container<'a> {
     /// When `v` is not below [`Container::connectivity_vertex_count`].
     pub fn input_vertex(&self, v: Vertex) -> Option<u32> {
         let output = self.output_vertex(v);
-        self.perm.map(|(vertices, _)| vertices.at(output as usize))
+        self.perm.map(|_| output)
     }
 }
