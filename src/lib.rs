@@ -44,6 +44,9 @@ pub mod corner_table;
 pub mod edgebreaker;
 pub mod error;
 pub mod format;
+#[cfg(feature = "fuzz-checks")]
+#[doc(hidden)]
+pub mod fuzz_checks;
 #[cfg(feature = "generate")]
 pub mod generate;
 pub mod ids;

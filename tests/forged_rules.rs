@@ -80,3 +80,40 @@ fn explore() {
     };
     scan(&which, &bytes, tag, width, small);
 }
+
+#[test]
+#[ignore]
+fn explore_v38() {
+    use lrmesh::{CornerOps, Vertex};
+    use lrmesh::lr::LrLayout;
+    use lrmesh::generate::{self, Rng};
+    let mut meshes: Vec<(String, lrmesh::Mesh)> = vec![];
+    for entry in std::fs::read_dir(common::corpus_dir()).unwrap() {
+        let p = entry.unwrap().path();
+        if let Ok(m) = lrmesh::load(&p) { meshes.push((p.display().to_string(), m)); }
+    }
+    for v in ["boundary_hedra_open", "defective_torus", "nonmanifold_vertex", "torus_with_t0"] {
+        meshes.push((v.into(), lrmesh::load(format!("{}/spec/vectors/{v}.off", env!("CARGO_MANIFEST_DIR"))).unwrap()));
+    }
+    for seed in 0..20 {
+        let mut m = generate::torus(5, 6);
+        generate::punch_holes(&mut m, 2, &mut Rng::new(seed));
+        generate::add_defects(&mut m, 3, &mut Rng::new(seed));
+        meshes.push((format!("gen{seed}"), m));
+    }
+    for (name, mesh) in meshes {
+        for conn in [lrmesh::write::Connectivity::Lr, lrmesh::write::Connectivity::LrCompact] {
+        let bytes = lrmesh::write::encode(&mesh, &lrmesh::write::EncodeOptions { connectivity: conn, keep_order: true, ..Default::default() }).unwrap();
+        let view = open(&bytes, &Limits::default()).unwrap();
+        let c = view.connectivity();
+        let m_r = view.lr().map(|l| l.ring_vertices()).or(view.lr_compact().map(|l| l.ring_vertices())).unwrap();
+        for v in m_r..c.vertex_id_bound() {
+            let corners: Vec<_> = c.corners().filter(|&x| c.vertex(x) == Vertex(v)).collect();
+            let open = corners.iter().filter(|&&x| c.unswing(x).is_none()).count();
+            if corners.len() >= 2 && open > 0 {
+                println!("{name} {conn:?} len {} v {v} corners {corners:?} open {open}", bytes.len());
+            }
+        }
+        }
+    }
+}

@@ -1509,11 +1509,3 @@ fn fuzz_seeds_are_valid() {
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     }
 }
-
-#[test]
-fn fuzz_regressions_do_not_panic() {
-    for (format, path) in files_under(&repo().join("corpus/fuzz/regressions")) {
-        let bytes = std::fs::read(&path).unwrap();
-        must_not_panic(&bytes, format);
-    }
-}

@@ -1,14 +1,7 @@
-//! Any bytes given to the OBJ importer: an error or a mesh that validates, never a panic.
+//! Fuzz target `import_obj`: what it checks is `lrmesh::fuzz_checks`, shared with the tests that
+//! replay `corpus/fuzz/import_obj/` and `corpus/fuzz/regressions/import_obj/`.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use lrmesh::io::{read_mesh_bytes, MeshFormat, ReadOptions};
 
-fuzz_target!(|data: &[u8]| {
-    if let Ok(loaded) = read_mesh_bytes(data, MeshFormat::Obj, &ReadOptions::default()) {
-        loaded
-            .mesh
-            .validate()
-            .expect("a mesh the importer returns validates");
-    }
-});
+fuzz_target!(|data: &[u8]| lrmesh::fuzz_checks::run("import_obj", data));

@@ -1,14 +1,7 @@
-//! Any bytes given to the OFF importer: an error or a mesh that validates, never a panic.
+//! Fuzz target `import_off`: what it checks is `lrmesh::fuzz_checks`, shared with the tests that
+//! replay `corpus/fuzz/import_off/` and `corpus/fuzz/regressions/import_off/`.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use lrmesh::io::{read_mesh_bytes, MeshFormat, ReadOptions};
 
-fuzz_target!(|data: &[u8]| {
-    if let Ok(loaded) = read_mesh_bytes(data, MeshFormat::Off, &ReadOptions::default()) {
-        loaded
-            .mesh
-            .validate()
-            .expect("a mesh the importer returns validates");
-    }
-});
+fuzz_target!(|data: &[u8]| lrmesh::fuzz_checks::run("import_off", data));

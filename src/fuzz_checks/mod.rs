@@ -1,0 +1,172 @@
+//! What each fuzz target checks, written once for the targets in `fuzz/` and for the tests
+//! that replay their seeds (`corpus/fuzz/<target>/`) and findings
+//! (`corpus/fuzz/regressions/<target>/`) on every `cargo test`. Each function panics when
+//! the library misbehaves on its input; an input the library rightly refuses passes.
+#![allow(missing_docs, clippy::missing_panics_doc)]
+
+mod round_trip;
+
+pub use round_trip::round_trip;
+
+use crate::io::{read_mesh_bytes, MeshFormat, ReadOptions};
+use crate::ops::{self, CornerOps, Plane};
+use crate::read::{open, Limits};
+use crate::write::{assemble, encode, Connectivity, EncodeOptions};
+use crate::{generate, Vertex};
+
+/// The fuzz targets, by name.
+pub const TARGETS: [&str; 8] = [
+    "import_obj",
+    "import_off",
+    "import_ply",
+    "import_stl",
+    "container",
+    "container_forged",
+    "edgebreaker",
+    "round_trip",
+];
+
+/// Runs target `name` on `data`.
+pub fn run(name: &str, data: &[u8]) {
+    match name {
+        "import_obj" => import(MeshFormat::Obj, data),
+        "import_off" => import(MeshFormat::Off, data),
+        "import_ply" => import(MeshFormat::Ply, data),
+        "import_stl" => import(MeshFormat::Stl, data),
+        "container" => container(data),
+        "container_forged" => container_forged(data),
+        "edgebreaker" => edgebreaker(data),
+        "round_trip" => round_trip(data),
+        other => panic!("no fuzz target {other}"),
+    }
+}
+
+/// An importer: an error, or a mesh that validates (STL: welded or not alike).
+pub fn import(format: MeshFormat, data: &[u8]) {
+    let plain = read_mesh_bytes(data, format, &ReadOptions { weld: false });
+    if let Ok(l) = &plain {
+        l.mesh
+            .validate()
+            .expect("a mesh the importer returns validates");
+    }
+    if format == MeshFormat::Stl {
+        let welded = read_mesh_bytes(data, format, &ReadOptions { weld: true });
+        if let Ok(l) = &welded {
+            l.mesh.validate().expect("a welded mesh validates");
+        }
+        assert_eq!(plain.is_ok(), welded.is_ok());
+        if let (Ok(a), Ok(b)) = (&plain, &welded) {
+            assert_eq!(a.mesh.triangle_count(), b.mesh.triangle_count());
+            assert!(b.mesh.vertex_count() <= a.mesh.vertex_count());
+        }
+    }
+}
+
+/// The Edgebreaker decoder on any bytes: an error, or triangles over declared vertices.
+pub fn edgebreaker(data: &[u8]) {
+    let limits = crate::edgebreaker::Limits {
+        max_triangles: 1 << 20,
+        max_vertices: 1 << 20,
+    };
+    if let Ok(decoded) = crate::edgebreaker::decode(data, &limits) {
+        assert!(decoded
+            .triangles
+            .iter()
+            .all(|t| t.iter().all(|&v| v < decoded.vertex_count)));
+    }
+}
+
+/// Any bytes given to the container reader: an error, or a container that decodes to a mesh
+/// that validates and whose connectivity, of whatever kind, answers every operator of every
+/// corner with a valid id, with stars and contours that terminate. (Checksums are skipped
+/// under `cfg(fuzzing)` so that the fuzzer reaches the section parsers.)
+pub fn container(data: &[u8]) {
+    let Ok(file) = open(data, &Limits::default()) else {
+        return;
+    };
+    file.to_mesh().validate().expect("a decoded mesh validates");
+    walk(&file);
+}
+
+/// A valid container of a small generated mesh, in the kind and with the options the first
+/// byte chooses, with fields of one section overwritten by the following bytes (section
+/// index, offset, value) and the checksums recomputed: the rules behind the checksums are
+/// reached even without `cfg(fuzzing)`.
+pub fn container_forged(data: &[u8]) {
+    let Some((&choice, edits)) = data.split_first() else {
+        return;
+    };
+    let kind = [
+        Connectivity::Lr,
+        Connectivity::LrCompact,
+        Connectivity::Strips,
+        Connectivity::Edgebreaker,
+    ][(choice & 3) as usize];
+    let mut mesh = generate::torus(3 + (choice >> 2 & 3) as u32, 4);
+    if choice & 0x10 != 0 {
+        let mut rng = generate::Rng::new(choice as u64);
+        generate::punch_holes(&mut mesh, 1, &mut rng);
+        generate::add_defects(&mut mesh, 1, &mut rng);
+    }
+    let options = EncodeOptions {
+        connectivity: kind,
+        keep_order: choice & 0x20 != 0,
+        quantize16: choice & 0x40 != 0,
+        ..EncodeOptions::default()
+    };
+    let bytes = encode(&mesh, &options).expect("a generated mesh encodes");
+    let mut sections: Vec<_> = open(&bytes, &Limits::default())
+        .expect("what we write opens")
+        .sections
+        .sections
+        .iter()
+        .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
+        .collect();
+    for edit in edits.chunks_exact(4) {
+        let index = edit[0] as usize % sections.len();
+        let section = &mut sections[index].2;
+        if section.is_empty() {
+            continue;
+        }
+        let at = u16::from_le_bytes([edit[1], edit[2]]) as usize % section.len();
+        section[at] = edit[3];
+    }
+    container(&assemble(&sections));
+}
+
+/// Every operator of every corner answers with a valid id; stars, valences, normals and
+/// contours terminate.
+fn walk(file: &crate::Container) {
+    let mesh = file.connectivity();
+    let m = mesh.vertex_id_bound();
+    assert_eq!(m, file.connectivity_vertex_count());
+    let positions: Vec<[f32; 3]> = (0..m).map(|v| file.position(Vertex(v))).collect();
+    for c in mesh.corners() {
+        assert!(mesh.vertex(c).0 < m);
+        assert!(mesh.is_corner(mesh.next(c)) && mesh.is_corner(mesh.prev(c)));
+        if let Some(o) = mesh.opposite(c) {
+            assert!(mesh.is_corner(o));
+            assert_eq!(mesh.opposite(o), Some(c));
+        }
+        for d in [mesh.swing(c), mesh.unswing(c), mesh.left(c), mesh.right(c)]
+            .into_iter()
+            .flatten()
+        {
+            assert!(mesh.is_corner(d));
+        }
+    }
+    let mut corners_seen = 0usize;
+    for v in mesh.vertices() {
+        let star: Vec<_> = ops::star(mesh, v).collect();
+        assert!(star.iter().all(|&c| mesh.vertex(c) == v));
+        corners_seen += star.len();
+        ops::valence(mesh, v);
+        ops::vertex_normal(mesh, &positions, v);
+    }
+    assert!(corners_seen <= mesh.corners().count());
+    let plane = Plane {
+        normal: [0.3, -0.2, 1.0],
+        offset: 0.1,
+    };
+    ops::contours(mesh, &positions, &plane);
+}
