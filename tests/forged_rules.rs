@@ -716,7 +716,7 @@ fn v15_lrtb_counts() {
 /// [V15] The reserved words at 24 and 28 and the record count at 16 are located at their own
 /// fields.
 #[test]
-#[ignore = "reader bug: LRTB reserved words 24 and 28 are reported at offset 20, and ni ≥ 0x3FFFFFFF at offset 12 (n0) instead of 16 (ni)"]
+
 fn v15_lrtb_fields_located_exactly() {
     let bytes = vector("closed_tetrahedron.lrm");
     let at = section_at(&bytes, Tag::LRTB);
@@ -807,7 +807,7 @@ fn v17_lr_entries() {
 
 /// [V17] A record's tip out of range is located at the record's tip word.
 #[test]
-#[ignore = "reader bug: a VO* record whose tip is ≥ m is reported at the LR entry that uses it, not at the record's tip word"]
+
 fn v17_record_tip_located_at_the_record() {
     let bytes = vector("torus_with_t0.lrm");
     let bad = forge(&bytes, Tag::LRTB, |p| set_lrtb(p, VO_STAR, 0, 25));
@@ -950,7 +950,7 @@ fn v22_opposites() {
 /// [V22] A corner whose opposite is a smaller corner that does not point back is located
 /// at that corner.
 #[test]
-#[ignore = "reader bug: a corner whose opposite is smaller and does not point back is reported at the start of the section (LRTB offset 0), not at the corner"]
+
 fn v22_opposite_not_pointing_back_is_located() {
     // A T0 corner c whose opposite o is larger, given NONE: o.o = c no longer points back,
     // and o is the corner at fault.
@@ -1033,7 +1033,7 @@ fn v24_copies() {
 
 /// [V24] An original out of range is located at the original's word.
 #[test]
-#[ignore = "reader bug: a COPY original ≥ V is reported at the pair's copy word, not at the original's word 4 bytes further"]
+
 fn v24_original_out_of_range_located() {
     let bytes = vector("defective_torus.lrm");
     let at = section_at(&bytes, Tag::COPY);
@@ -1083,7 +1083,7 @@ fn v26_permutations() {
 
 /// [V26] A wrong triangle count is located at its own field, offset 4.
 #[test]
-#[ignore = "reader bug: a PERM triangle count ≠ N + K is reported at offset 0 (the vertex count), not 4"]
+
 fn v26_triangle_count_located() {
     let bytes = vector("nonmanifold_vertex.lrm");
     let bad = forge(&bytes, Tag::PERM, |p| put(p, 4, 10));
@@ -1139,7 +1139,7 @@ fn v27_edgebreaker_stream() {
 /// [V27] A stream with the wrong vertex count is located at its vertex count `nv`, byte 2
 /// of the stream.
 #[test]
-#[ignore = "reader bug: an EBRK stream decoding to nv ≠ V vertices is reported at the start of the section, not at nv (stream byte 2)"]
+
 fn v27_vertex_count_located() {
     let hedra = lrmesh::load(common::corpus_dir().join("hedra_open.off")).unwrap();
     let bytes = encoded(&hedra, Connectivity::Edgebreaker);
@@ -1174,7 +1174,7 @@ fn v28_strips_counts() {
 
 /// [V28] The second reserved word is located at offset 12.
 #[test]
-#[ignore = "reader bug: the STRP reserved word at 12 is reported at offset 8"]
+
 fn v28_reserved_located() {
     let bytes = vector("closed_tetrahedron.strips.lrm");
     let bad = forge(&bytes, Tag::STRP, |p| put(p, 12, 1));
@@ -1242,7 +1242,7 @@ fn v29_strip_layout() {
 
 /// [V29] A strip whose last window is a swap is located at that window.
 #[test]
-#[ignore = "reader bug: a strip whose last window is a swap is reported at the strip's first entry, not at its last window"]
+
 fn v29_last_window_located() {
     let bytes = vector("closed_tetrahedron.strips.lrm"); // T = 2 0 1 3 2 0 D D
     let bad = forge(&bytes, Tag::STRP, |p| set_strp(p, "T", 5, 3));
@@ -1306,7 +1306,7 @@ fn v31_strips_opposites() {
 /// [V31] A corner whose opposite is smaller and does not point back is located at a
 /// triangle.
 #[test]
-#[ignore = "reader bug: a strips corner whose opposite is smaller and does not point back is reported at the start of A, not at the corner's triangle"]
+
 fn v31_opposite_not_pointing_back_is_located() {
     // A[0] = 3 made DELIMITER: corner 2 of triangle 0 loses its opposite, corner 10 of
     // triangle 3 (at T[3]) still names corner 2.
@@ -1591,7 +1591,7 @@ fn v36_t0_rows() {
 
 /// [V36] Row faults in units 1–2 or in `OVERFLOW` are located at that unit or word.
 #[test]
-#[ignore = "reader bug: LRBE T0-row faults in units 1–2 (bit 15 of a vertex field, a vertex out of range through unit 1, an overflow index ≠ k) or in OVERFLOW (a vertex ≥ m) are reported at the row's unit 0"]
+
 fn v36_row_faults_located_at_their_unit() {
     let bytes = vector("defective_torus.lr-compact.lrm");
     let p = payload(&bytes, Tag::LRBE);

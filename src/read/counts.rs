@@ -167,8 +167,13 @@ pub(super) fn copies<'a>(sections: &Sections<'a>, m: u32) -> Result<LeWords<'a>>
     for i in 0..k as usize {
         let (copy, original) = (words.at(2 * i), words.at(2 * i + 1));
         if copy >= m || original >= m || previous.is_some_and(|p| copy <= p) {
+            let field = if copy >= m || previous.is_some_and(|p| copy <= p) {
+                0
+            } else {
+                4
+            };
             return Err(f.err(
-                at + 8 * i,
+                at + 8 * i + field,
                 rule,
                 format!(
                     "bad copy pair ({copy}, {original}): ids must be below {m}, copies increasing"
@@ -230,7 +235,7 @@ pub(super) fn perm<'a>(
     let (nv, nt) = (f.u32(0, rule)?, f.u32(4, rule)?);
     if nv != w || nt as u64 != t {
         return Err(f.err(
-            0,
+            if nv != w { 0 } else { 4 },
             rule,
             format!("permutations of {nv} vertices and {nt} triangles, the mesh has {w} and {t}"),
         ));

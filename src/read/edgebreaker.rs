@@ -31,8 +31,9 @@ pub(super) fn edgebreaker_table(
         other => other,
     })?;
     if decoded.vertex_count != m {
+        // The vertex count is the first LEB128 field, after the magic and version bytes.
         return Err(f.err(
-            0,
+            2,
             rule,
             format!("{} vertices, section MESH says {m}", decoded.vertex_count),
         ));

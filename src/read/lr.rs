@@ -27,8 +27,8 @@ pub(super) fn lr_tables<'a>(sections: &Sections<'a>, m: u32) -> Result<LrTables<
             format!("{} vertices, section MESH says {m}", h.m),
         ));
     }
-    if h.reserved != [0; 3] {
-        return Err(f.err(20, Rule(15), "reserved fields are not zero"));
+    if let Some(i) = h.reserved.iter().position(|&r| r != 0) {
+        return Err(f.err(20 + 4 * i, Rule(15), "reserved field is not zero"));
     }
     if m >= NULL {
         return Err(f.err(
@@ -40,8 +40,15 @@ pub(super) fn lr_tables<'a>(sections: &Sections<'a>, m: u32) -> Result<LrTables<
     if m_r > m || (m_r == 0) != (rings == 0) || rings as u64 > m_r as u64 / 4 {
         return Err(f.err(4, Rule(15), format!("{m_r} ring vertices in {rings} rings for {m} vertices (rings have at least 4 vertices)")));
     }
-    if 8 * m_r as u64 + 4 * h.t0 as u64 >= NONE as u64 || records >= NULL {
+    if 8 * m_r as u64 + 4 * h.t0 as u64 >= NONE as u64 {
         return Err(f.err(12, Rule(15), "corner ids exceed 32 bits"));
+    }
+    if records >= NULL {
+        return Err(f.err(
+            16,
+            Rule(15),
+            format!("{records} records exceed the LR limit"),
+        ));
     }
     let layout = h.layout();
     f.expect_len(layout.as_ref().map(|l| l.len), Rule(15))?;
@@ -103,10 +110,13 @@ pub(super) fn lr_tables<'a>(sections: &Sections<'a>, m: u32) -> Result<LrTables<
                 ));
             }
             record_used[value as usize] = true;
-            if vo_star.at(3 * value as usize) >= m {
-                return bad(format!(
-                    "record tip {} out of range",
-                    vo_star.at(3 * value as usize)
+            let tip = vo_star.at(3 * value as usize);
+            if tip >= m {
+                return Err(word_err(
+                    6,
+                    3 * value as usize,
+                    Rule(17),
+                    format!("record {value} has tip {tip} out of range ({m} vertices)"),
                 ));
             }
         } else if value >= m && !(value == NULL && slot % 2 == 1 && e & WART == 0) {

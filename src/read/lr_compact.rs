@@ -10,7 +10,7 @@ use crate::error::{Result, Rule};
 use crate::format::layout::LrbeHeader;
 use crate::format::Tag;
 use crate::ids::Corner;
-use crate::lr::compact::{BLOCK_SHIFT, EXTENDED, T0_ROW_UNITS};
+use crate::lr::compact::{BLOCK_SHIFT, EXTENDED, OVERFLOW_ROW_WORDS, T0_ROW_UNITS};
 use crate::lr::{find_boundaries_on_ring, CompactTables, LrLayout, NULL};
 use crate::words::{LeUnits, LeWords, Units, Words};
 
@@ -182,14 +182,24 @@ pub(super) fn lr_compact_tables<'a>(
     for j in 0..n0 as usize {
         let at = T0_ROW_UNITS * j;
         let codes = t0.at(at + 3);
-        if codes & 0x8000 != 0 {
-            let index = t0.at(at + 1) as u32 | (t0.at(at + 2) as u32) << 16;
-            if codes != 0x8000 || t0.at(at) != 0 || index != next_overflow {
+        let overflow_index = t0.at(at + 1) as u32 | (t0.at(at + 2) as u32) << 16;
+        let overflows = codes & 0x8000 != 0;
+        if overflows {
+            let fault = if codes != 0x8000 {
+                Some(3)
+            } else if t0.at(at) != 0 {
+                Some(0)
+            } else if overflow_index != next_overflow {
+                Some(1)
+            } else {
+                None
+            };
+            if let Some(i) = fault {
                 return Err(unit_err(
                     8,
-                    at,
+                    at + i,
                     Rule(36),
-                    format!("T0 row {j}: malformed overflow row"),
+                    format!("T0 row {j}: malformed overflow row (overflow row {next_overflow} expected)"),
                 ));
             }
             next_overflow += 1;
@@ -200,11 +210,11 @@ pub(super) fn lr_compact_tables<'a>(
                 Rule(36),
                 format!("T0 row {j}: reserved bits set"),
             ));
-        } else if [1, 2].iter().any(|&i| t0.at(at + i) & 0x8000 != 0) {
+        } else if let Some(i) = [1, 2].into_iter().find(|&i| t0.at(at + i) & 0x8000 != 0) {
             // A vertex field is 15 bits.
             return Err(unit_err(
                 8,
-                at,
+                at + i,
                 Rule(36),
                 format!("T0 row {j}: vertex field out of range"),
             ));
@@ -212,12 +222,13 @@ pub(super) fn lr_compact_tables<'a>(
         for i in 0..3 {
             let x = tables.t0_vertex(3 * j as u32 + i);
             if x >= m {
-                return Err(unit_err(
-                    8,
-                    at,
-                    Rule(36),
-                    format!("T0 row {j}: vertex {x} out of range ({m} vertices)"),
-                ));
+                let message = format!("T0 row {j}: vertex {x} out of range ({m} vertices)");
+                return Err(if overflows {
+                    let word = OVERFLOW_ROW_WORDS * overflow_index as usize + i as usize;
+                    word_err(7, word, Rule(36), message)
+                } else {
+                    unit_err(8, at + i as usize, Rule(36), message)
+                });
             }
         }
     }
