@@ -95,18 +95,30 @@ fn view_equals_owned_tables_and_corner_table() {
 
 #[test]
 fn forced_period_is_recorded_and_smaller_choice_wins() {
+    use lrmesh::format::layout::LrbeHeader;
     let mesh = generate::irregular_torus(20_000, 4);
-    let sizes: Vec<usize> = [vec![0], vec![32], vec![0, 32]]
+    // (file size, period recorded in the LRBE header)
+    let results: Vec<(usize, u32)> = [vec![0], vec![32], vec![0, 32]]
         .into_iter()
         .map(|periods| {
             let o = EncodeOptions {
                 periods,
                 ..options()
             };
-            encode(&mesh, &o).unwrap().len()
+            let bytes = encode(&mesh, &o).unwrap();
+            let file = lrmesh::open(&bytes).unwrap();
+            let section = file.sections.section(lrmesh::format::Tag::LRBE).unwrap();
+            (bytes.len(), LrbeHeader::read(section.bytes).period)
         })
         .collect();
-    assert_eq!(sizes[2], sizes[0].min(sizes[1]));
+    assert_eq!(results[0].1, 0, "a forced period is recorded");
+    assert_eq!(results[1].1, 32, "a forced period is recorded");
+    assert_ne!(
+        results[0].0, results[1].0,
+        "the periods give different sizes"
+    );
+    let smaller = if results[0].0 < results[1].0 { 0 } else { 1 };
+    assert_eq!(results[2], results[smaller], "the smaller choice wins");
 }
 
 /// Forged `LRBE` sections (checksums recomputed, so that the rules themselves must catch

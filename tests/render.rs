@@ -275,8 +275,9 @@ fn every_corpus_mesh_and_broken_meshes_render() {
         *p = [1.0, 2.0, 3.0];
     }
     meshes.push(flat);
+    let drawable = meshes.len() - 2; // the NaN and flat meshes may draw nothing
     meshes.push(Mesh::new(vec![[0.0; 3]; 3], Vec::new()));
-    for mesh in &meshes {
+    for (k, mesh) in meshes.iter().enumerate() {
         for mode in [ColorMode::Ring, ColorMode::Classes] {
             for (perspective, elevation) in [(false, 90.0), (true, -90.0), (true, 10.0)] {
                 let image = draw(
@@ -290,6 +291,12 @@ fn every_corpus_mesh_and_broken_meshes_render() {
                     },
                 );
                 assert_eq!((image.width(), image.height()), (48, 40));
+                let drawn = pixels(&image).filter(|&p| p != BACKGROUND).count();
+                if k < drawable {
+                    assert!(drawn > 0, "mesh {k}: nothing drawn");
+                } else if mesh.triangles.is_empty() {
+                    assert_eq!(drawn, 0, "mesh {k}: drawn without triangles");
+                }
             }
         }
     }

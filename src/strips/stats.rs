@@ -44,17 +44,31 @@ impl StripStats {
         options: &StripOptions,
         lr_options: &LrOptions,
     ) -> Result<StripStats> {
-        let strips = stripify(mesh.positions.len(), &mesh.triangles, options);
         let table = CornerTable::from_mesh(mesh)?;
-        let cts = Cts::build(&table, options)?;
         let lr = Lr::build(&table, lr_options)?;
+        StripStats::from_built(mesh, &table, &lr, options)
+    }
+
+    /// The figures of `mesh` from its corner table and LR already built (`lrmesh stats`
+    /// builds each once for every report).
+    ///
+    /// # Errors
+    /// As [`StripStats::of`].
+    pub fn from_built(
+        mesh: &Mesh,
+        table: &CornerTable,
+        lr: &Lr,
+        options: &StripOptions,
+    ) -> Result<StripStats> {
+        let strips = stripify(mesh.positions.len(), &mesh.triangles, options);
+        let cts = Cts::build(table, options)?;
         Ok(StripStats {
             indices_per_triangle: strips.indices_per_triangle(),
             strips: strips.strip_count,
             fans: strips.fan_count,
             isolated_triangles: (strips.list.len() / 3) as u32,
             cts_bits_per_triangle: cts.bits_per_triangle(),
-            lr_index_rpt: lr_index_list(&lr).references_per_triangle(),
+            lr_index_rpt: lr_index_list(lr).references_per_triangle(),
         })
     }
 }

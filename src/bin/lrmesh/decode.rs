@@ -1,0 +1,59 @@
+//! `lrmesh decode` and `lrmesh verify`: a container back to a mesh file, or only checked.
+
+use std::path::PathBuf;
+
+use lrmesh::io;
+use lrmesh::read::{self, Limits};
+
+use crate::common::{map, say};
+use crate::progress;
+
+/// Decode an .lrm container into a mesh file.
+#[derive(clap::Args)]
+pub struct DecodeArgs {
+    /// The container.
+    input: PathBuf,
+    /// The mesh to write (.obj, .off, .ply).
+    #[arg(short, long)]
+    output: PathBuf,
+}
+
+/// Validate an .lrm container fully: exit 0 only when it is valid.
+#[derive(clap::Args)]
+pub struct VerifyArgs {
+    /// The container.
+    file: PathBuf,
+}
+
+pub fn decode(args: DecodeArgs) -> lrmesh::Result<()> {
+    let bytes = map(&args.input)?;
+    let view = read::open(&bytes, &Limits::default()).map_err(|e| e.with_file(&args.input))?;
+    let mesh = progress::step("decoding", || view.to_mesh());
+    progress::step("writing", || io::write_mesh(&args.output, &mesh))?;
+    eprintln!(
+        "wrote {}: {} vertices, {} triangles{}",
+        args.output.display(),
+        mesh.vertex_count(),
+        mesh.triangle_count(),
+        if view.is_quantized() {
+            " (positions were quantized: lossy)"
+        } else {
+            ""
+        }
+    );
+    Ok(())
+}
+
+pub fn verify(args: VerifyArgs) -> lrmesh::Result<()> {
+    let bytes = map(&args.file)?;
+    let view = read::open(&bytes, &Limits::default()).map_err(|e| e.with_file(&args.file))?;
+    let summary = view.summary();
+    say!(
+        "{}: valid lrmesh container {}, {} vertices, {} triangles",
+        args.file.display(),
+        summary.version,
+        summary.vertices,
+        summary.triangles
+    );
+    Ok(())
+}

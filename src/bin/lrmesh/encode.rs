@@ -1,0 +1,126 @@
+//! `lrmesh encode`: a mesh into a container, with the connectivity's size next to an
+//! indexed triangle list and a corner table.
+
+use std::path::PathBuf;
+
+use clap::ValueEnum;
+use lrmesh::lr::LrOptions;
+use lrmesh::read::{self, Limits};
+use lrmesh::write::{self, EncodeOptions};
+use lrmesh::Error;
+
+use crate::common::{load, say};
+use crate::progress;
+use crate::stats::compact_periods;
+
+/// Encode a mesh into an .lrm container and print the sizes.
+#[derive(clap::Args)]
+pub struct Args {
+    /// The input mesh (.obj, .off, .ply, .stl).
+    input: PathBuf,
+    /// The container to write.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Connectivity representation.
+    #[arg(long, value_enum, default_value_t = Connectivity::Lr)]
+    connectivity: Connectivity,
+    /// Store the input's vertex and triangle order, so that decoding restores it.
+    #[arg(long)]
+    keep_order: bool,
+    /// Store positions quantized to this many bits in their bounding box (lossy; 16 only).
+    #[arg(long, value_parser = clap::value_parser!(u8).range(16..=16))]
+    quantize: Option<u8>,
+    /// RING-EXPANDER runs per component; the best ring is kept.
+    #[arg(long, default_value_t = LrOptions::default().tries)]
+    tries: u32,
+    /// Seed for the choice of seed corners (same seed, same bytes).
+    #[arg(long, default_value_t = LrOptions::default().seed)]
+    seed: u64,
+    /// Bit-efficient LR: the HYBRID-RING-EXPANDER period k to use (0: depth first)
+    /// instead of trying several and keeping the smallest.
+    #[arg(long)]
+    period: Option<u32>,
+    /// STL input only: merge corners with identical positions into shared vertices.
+    #[arg(long)]
+    weld: bool,
+}
+
+/// Connectivity representations of a container.
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum Connectivity {
+    /// Standard Laced Ring: random access on the loaded file.
+    Lr,
+    /// Edgebreaker: the smallest, decoded sequentially.
+    Edgebreaker,
+    /// Constrained triangle strips with the adjacent-strips table: a rendering index list
+    /// that also answers corner queries on the loaded file.
+    Strips,
+    /// Bit-efficient Laced Ring: 16-bit offsets, random access on the loaded file.
+    LrCompact,
+}
+
+pub fn run(args: Args) -> lrmesh::Result<()> {
+    let mesh = load(&args.input, args.weld)?;
+    let mut options = EncodeOptions {
+        connectivity: match args.connectivity {
+            Connectivity::Lr => write::Connectivity::Lr,
+            Connectivity::Edgebreaker => write::Connectivity::Edgebreaker,
+            Connectivity::Strips => write::Connectivity::Strips,
+            Connectivity::LrCompact => write::Connectivity::LrCompact,
+        },
+        lr: LrOptions {
+            tries: args.tries,
+            seed: args.seed,
+        },
+        periods: compact_periods(args.period),
+        keep_order: args.keep_order,
+        quantize16: args.quantize.is_some(),
+        ..EncodeOptions::default()
+    };
+    options.metadata.source = args
+        .input
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned());
+    let bytes = progress::step("encoding", || write::encode(&mesh, &options))?;
+    let output = &args.output;
+    std::fs::write(output, &bytes).map_err(|source| Error::Io {
+        path: output.clone(),
+        source,
+    })?;
+    let summary = read::open(&bytes, &Limits::default())?.summary();
+    let n = summary.triangles.max(1) as f64;
+    let table_refs = 6 * summary.triangles + summary.connectivity_vertices as u64;
+    say!("wrote {}: {} bytes", output.display(), bytes.len());
+    say!(
+        "{:<28} {:>12} {:>10} {:>10}",
+        "connectivity",
+        "bytes",
+        "bits/tri",
+        "refs/tri"
+    );
+    say!(
+        "{:<28} {:>12} {:>10.2} {:>10}",
+        format!("{} (this file)", summary.connectivity),
+        summary.connectivity_bytes,
+        summary.connectivity_bpt,
+        summary.rpt.map_or("-".to_string(), |r| format!("{r:.3}"))
+    );
+    say!(
+        "{:<28} {:>12} {:>10.2} {:>10.3}",
+        "indexed triangle list",
+        12 * summary.triangles,
+        96.0,
+        3.0
+    );
+    say!(
+        "{:<28} {:>12} {:>10.2} {:>10.3}",
+        "corner table (V, O, C)",
+        4 * table_refs,
+        32.0 * table_refs as f64 / n,
+        table_refs as f64 / n
+    );
+    if summary.quantized {
+        say!("positions quantized to 16 bits: lossy");
+    }
+    Ok(())
+}
