@@ -11,6 +11,15 @@ use crate::ids::{Corner, Triangle, Vertex};
 ///
 /// Corners of a triangle are ordered so that `next` walks its vertices in the triangle's
 /// orientation. `opposite` is `None` across a boundary (or cut) edge.
+///
+/// # Panics
+/// The operators take ids of the mesh: corners of its triangles ([`CornerOps::corners`], or
+/// answers of other operators), vertices and triangles below the bounds. An id beyond a
+/// bound panics. Representations whose corner ids have gaps (the LR's and the strips' ids
+/// follow their tables) answer an unused id below the bound without checking it, for speed:
+/// the answer is then unspecified, or a panic (never undefined behaviour). Callers that hold ids
+/// from elsewhere check them first, or go through [`crate::read::Connectivity`], which
+/// panics on any id that is not a corner rather than make an answer up.
 pub trait CornerOps {
     /// Exclusive upper bound of vertex ids.
     fn vertex_id_bound(&self) -> u32;

@@ -54,7 +54,7 @@ pub struct LrTables<W> {
 /// whose right slot has tip `NULL` (see [`LrLayout::boundaries_on_ring`]).
 pub(crate) fn find_boundaries_on_ring<T: LrLayout>(tables: &T) -> bool {
     let null_right = (0..tables.ring_vertices())
-        .filter(|&v| tables.tip(v, RIGHT) == NULL && !tables.wart(v, LEFT))
+        .filter(|&v| tables.tip(v, RIGHT) == NULL)
         .count();
     let without_opposite = tables
         .triangles()

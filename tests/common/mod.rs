@@ -1,6 +1,9 @@
 //! Checks shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod forge;
+pub mod io_helpers;
+
 use lrmesh::ops::{self, CornerOps};
 use lrmesh::{Corner, CornerTable, Mesh, TopologyReport};
 use std::collections::BTreeSet;
