@@ -17,7 +17,7 @@ cargo mutants --no-shuffle --output "$out" --profile mutants \
     --test forged_container --test forged_sections --test forged_lr --test forged_lrbe \
     --test forged_strips_ebrk --test edgebreaker_malformed --test container \
     --test container_lr_compact --test every_kind --test vectors --test fuzz_replay \
-    --test edgebreaker || true
+    --test edgebreaker --test limits_exact || true
 dir="$out/mutants.out"
 count() { if [ -f "$dir/$1" ]; then wc -l <"$dir/$1"; else echo 0; fi; }
 caught=$(count caught.txt)

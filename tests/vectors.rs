@@ -25,8 +25,9 @@ const VECTORS: [&str; 6] = [
     "nonmanifold_vertex",
     // A torus whose LR has T0 triangles and irregular slots (records, T0 rows).
     "torus_with_t0",
-    // A torus with flipped edges, a hole and duplicated and degenerate triangles: in
-    // lr-compact, stored opposites that are ring corners and NONE.
+    // A torus with flipped edges, a non-manifold edge and vertex, a degenerate triangle and
+    // an unused vertex (spec/vectors/README.md): in lr-compact, stored opposites that are
+    // ring corners and NONE.
     "defective_torus",
 ];
 
