@@ -35,8 +35,7 @@ use crate::error::{Error, Result};
 use crate::ids::{Corner, Triangle, Vertex};
 use crate::ops::CornerOps;
 
-/// Marks a missing reference: no opposite corner, no corner for a vertex.
-pub const NONE: u32 = u32::MAX;
+pub use crate::ids::NONE;
 
 /// Next corner around the triangle: `c.n`.
 #[inline(always)]

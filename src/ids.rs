@@ -1,5 +1,8 @@
 //! Typed ids for corners, vertices and triangles, so that one cannot be passed for another.
 
+/// Marks a missing reference in stored tables: no opposite corner, no corner for a vertex.
+pub const NONE: u32 = u32::MAX;
+
 macro_rules! id_type {
     ($(#[$doc:meta])* $name:ident) => {
         $(#[$doc])*
@@ -36,10 +39,10 @@ id_type!(
 );
 
 impl Corner {
-    /// A corner id as tables store it: [`NONE`](crate::corner_table::NONE) stands for no
+    /// A corner id as tables store it: [`NONE`] stands for no
     /// corner (across a boundary, or for a vertex without triangles).
     #[inline(always)]
     pub fn from_stored(raw: u32) -> Option<Corner> {
-        (raw != crate::corner_table::NONE).then_some(Corner(raw))
+        (raw != NONE).then_some(Corner(raw))
     }
 }

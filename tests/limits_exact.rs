@@ -161,3 +161,71 @@ fn edgebreaker_degenerate_triangles_are_refused() {
         "no stream decodes to a degenerate triangle any more"
     );
 }
+
+/// Sections at their smallest: a mesh without vertices (GEOM of its 8-byte header alone, a
+/// STRP section of its header alone) and one with vertices but no triangle, in every kind.
+#[test]
+fn smallest_sections_in_every_kind() {
+    use lrmesh::write::Connectivity;
+    let lonely = Mesh::new(vec![[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]], Vec::new());
+    for mesh in [Mesh::default(), lonely] {
+        for connectivity in [
+            Connectivity::Lr,
+            Connectivity::LrCompact,
+            Connectivity::Strips,
+            Connectivity::Edgebreaker,
+        ] {
+            let options = EncodeOptions {
+                connectivity,
+                keep_order: true,
+                ..EncodeOptions::default()
+            };
+            let bytes = encode_container(&mesh, &options).unwrap();
+            let back = open(&bytes, &Limits::default())
+                .unwrap_or_else(|e| panic!("{connectivity:?}: {e}"))
+                .to_mesh();
+            assert_eq!(back, mesh, "{connectivity:?}");
+        }
+    }
+}
+
+/// Corner ids must fit 32 bits ([V15], [V33]): `8 m_r + 4 n0 < 2^32 − 1`, reported at `n0`
+/// even when `m_r = 0` makes a product of the two terms vanish.
+#[test]
+fn corner_id_bound_with_no_ring() {
+    use lrmesh::format::Tag;
+    let mesh = generate::torus(3, 4);
+    for (connectivity, tag, rule) in [
+        (lrmesh::write::Connectivity::Lr, Tag::LRTB, 15),
+        (lrmesh::write::Connectivity::LrCompact, Tag::LRBE, 33),
+    ] {
+        let options = EncodeOptions {
+            connectivity,
+            ..EncodeOptions::default()
+        };
+        let bytes = encode_container(&mesh, &options).unwrap();
+        let file = open(&bytes, &Limits::default()).unwrap();
+        let mut sections: Vec<_> = file
+            .sections
+            .sections
+            .iter()
+            .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
+            .collect();
+        let offset = file.sections.section(tag).unwrap().offset;
+        let payload = &mut sections.iter_mut().find(|s| s.0 == tag).unwrap().2;
+        // m_r = 0 and R = 0 (consistent), n0 = 2^30: 4 n0 alone reaches 2^32.
+        payload[4..8].copy_from_slice(&0u32.to_le_bytes());
+        payload[8..12].copy_from_slice(&0u32.to_le_bytes());
+        payload[12..16].copy_from_slice(&(1u32 << 30).to_le_bytes());
+        match open(&lrmesh::write::assemble(&sections), &Limits::default()) {
+            Err(Error::Format(e)) => {
+                assert_eq!(
+                    (e.rule, e.section.as_str(), e.offset),
+                    (lrmesh::Rule(rule), tag.name().as_str(), offset + 12),
+                    "{e}"
+                );
+            }
+            other => panic!("{tag}: {other:?}"),
+        }
+    }
+}
