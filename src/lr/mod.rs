@@ -46,7 +46,7 @@ pub mod compact;
 mod tables;
 
 pub use compact::{CompactLr, CompactOptions, CompactStats, CompactTables};
-pub(crate) use tables::{find_boundaries_on_ring, ring_bits};
+pub(crate) use tables::{boundaries_on_ring_given, ring_bits};
 pub use tables::{LrLayout, LrTables, IRREGULAR, NULL, VALUE, WART};
 
 use crate::corner_table::NONE;

@@ -53,13 +53,19 @@ pub struct LrTables<W> {
 /// Whether every corner of `tables` without an opposite is the tip corner of a left slot
 /// whose right slot has tip `NULL` (see [`LrLayout::boundaries_on_ring`]).
 pub(crate) fn find_boundaries_on_ring<T: LrLayout>(tables: &T) -> bool {
-    let null_right = (0..tables.ring_vertices())
-        .filter(|&v| tables.tip(v, RIGHT) == NULL)
-        .count();
     let without_opposite = tables
         .triangles()
         .flat_map(|t| tables.triangle_corners(t))
         .filter(|&c| tables.opposite(c).is_none())
+        .count();
+    boundaries_on_ring_given(tables, without_opposite)
+}
+
+/// [`find_boundaries_on_ring`] for a caller that has already counted the corners without an
+/// opposite (a reader, while validating every opposite).
+pub(crate) fn boundaries_on_ring_given<T: LrLayout>(tables: &T, without_opposite: usize) -> bool {
+    let null_right = (0..tables.ring_vertices())
+        .filter(|&v| tables.tip(v, RIGHT) == NULL)
         .count();
     null_right == without_opposite
 }

@@ -10,7 +10,7 @@ use crate::error::{Result, Rule};
 use crate::format::layout::LrtbHeader;
 use crate::format::Tag;
 use crate::ids::Corner;
-use crate::lr::{find_boundaries_on_ring, LrLayout, LrTables, IRREGULAR, NULL, VALUE, WART};
+use crate::lr::{boundaries_on_ring_given, LrLayout, LrTables, IRREGULAR, NULL, VALUE, WART};
 use crate::words::{LeWords, Words};
 
 /// The `LRTB` section as tables, after checking every rule the operators rely on.
@@ -158,8 +158,8 @@ pub(super) fn lr_tables<'a>(sections: &Sections<'a>, m: u32) -> Result<LrTables<
     }
 
     // [V19], [V21], [V22]; then [V23] and [V38] with the fan rule the file allows.
-    check_lr_opposites(&tables, &f, corner_at)?;
-    tables.boundaries_on_ring = find_boundaries_on_ring(&tables);
+    let without_opposite = check_lr_opposites(&tables, &f, corner_at)?;
+    tables.boundaries_on_ring = boundaries_on_ring_given(&tables, without_opposite);
     check_vertex_corners(&tables, Rule(23), |v, rule, message| {
         let at = if v < m_r {
             arrays[3].at(2 * v as usize)

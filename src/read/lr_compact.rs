@@ -11,7 +11,7 @@ use crate::format::layout::LrbeHeader;
 use crate::format::Tag;
 use crate::ids::Corner;
 use crate::lr::compact::{BLOCK_SHIFT, EXTENDED, OVERFLOW_ROW_WORDS, T0_ROW_UNITS};
-use crate::lr::{find_boundaries_on_ring, CompactTables, LrLayout, NULL};
+use crate::lr::{boundaries_on_ring_given, CompactTables, LrLayout, NULL};
 use crate::words::{LeUnits, LeWords, Units, Words};
 
 /// The `LRBE` section as tables, after checking every rule the operators rely on.
@@ -270,8 +270,8 @@ pub(super) fn lr_compact_tables<'a>(
             starts[6] + 4 * (v - m_r) as usize
         }
     };
-    check_lr_opposites(&tables, &f, corner_at)?;
-    tables.boundaries_on_ring = find_boundaries_on_ring(&tables);
+    let without_opposite = check_lr_opposites(&tables, &f, corner_at)?;
+    tables.boundaries_on_ring = boundaries_on_ring_given(&tables, without_opposite);
     check_vertex_corners(&tables, Rule(23), |v, rule, message| {
         f.err(vertex_at(v), rule, message)
     })?;

@@ -71,13 +71,15 @@ pub(super) fn check_rings<W: Words>(
 }
 
 /// [V19], [V21] and [V22] for any LR layout. `corner_at` gives the section offset that
-/// stores a corner's triangle, for errors. The vertex corners come after, once the reader
-/// knows whether the boundaries run along the ring ([`check_vertex_corners`]).
+/// stores a corner's triangle, for errors. Returns the number of corners without an
+/// opposite, from which the reader tells whether the boundaries run along the ring before it
+/// checks the vertex corners ([`check_vertex_corners`]).
 pub(super) fn check_lr_opposites<T: LrLayout>(
     tables: &T,
     f: &Fields,
     corner_at: impl Fn(Corner) -> usize,
-) -> Result<()> {
+) -> Result<usize> {
+    let mut without_opposite = 0;
     let corner_err = |c: Corner, rule: Rule, message: String| f.err(corner_at(c), rule, message);
     for slot in 0..2 * tables.ring_vertices() as usize {
         let (v, side) = ((slot / 2) as u32, slot % 2);
@@ -108,6 +110,7 @@ pub(super) fn check_lr_opposites<T: LrLayout>(
         }
         for c in corners {
             let Some(o) = tables.opposite(c) else {
+                without_opposite += 1;
                 continue;
             };
             // Each corner checks that its opposite points back; the shared edge is checked
@@ -129,7 +132,7 @@ pub(super) fn check_lr_opposites<T: LrLayout>(
             }
         }
     }
-    Ok(())
+    Ok(without_opposite)
 }
 
 /// [V23] (strips: [V32]) `v.c.v = v` and [V38] `v.c` is `NONE` exactly for a vertex no triangle uses, and
