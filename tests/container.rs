@@ -4,6 +4,7 @@
 mod common;
 
 use common::{check_against_table, corpus_dir, forge_fields, sections_of};
+use lrmesh::fuzz_checks::{assert_same_in_order, assert_same_up_to_order, rotated};
 use lrmesh::generate::{self, Rng};
 use lrmesh::io::{read_mesh, ReadOptions};
 use lrmesh::lr::Lr;
@@ -27,62 +28,6 @@ fn corpus() -> Vec<(String, Mesh)> {
     }
     out.sort_by(|a, b| a.0.cmp(&b.0));
     out
-}
-
-/// A triangle as its lexicographically smallest rotation, so that two rotations of one
-/// triangle compare equal even when it repeats an entry.
-fn rotated<T: Ord + Copy>(t: [T; 3]) -> [T; 3] {
-    [t, [t[1], t[2], t[0]], [t[2], t[0], t[1]]]
-        .into_iter()
-        .min()
-        .unwrap_or(t)
-}
-
-/// Same triangles, in order, up to rotation; same vertices and attributes.
-fn assert_same_in_order(got: &Mesh, want: &Mesh) {
-    assert_eq!(got.positions, want.positions);
-    assert_eq!(got.normals, want.normals);
-    assert_eq!(got.texcoords, want.texcoords);
-    assert_eq!(got.colors, want.colors);
-    assert_eq!(got.triangles.len(), want.triangles.len());
-    for (k, (g, w)) in got.triangles.iter().zip(&want.triangles).enumerate() {
-        assert_eq!(rotated(*g), rotated(*w), "triangle {k}");
-    }
-}
-
-/// Same triangles on the same positions, in any order: compares the sorted lists of triangles
-/// written as (position, attributes) triples.
-fn assert_same_up_to_order(got: &Mesh, want: &Mesh) {
-    assert_eq!(got.positions.len(), want.positions.len(), "vertex count");
-    let key = |m: &Mesh, v: u32| {
-        let v = v as usize;
-        (
-            m.positions[v].map(f32::to_bits),
-            m.normals.as_ref().map(|n| n[v].map(f32::to_bits)),
-            m.texcoords.as_ref().map(|t| t[v].map(f32::to_bits)),
-            m.colors.as_ref().map(|c| c[v]),
-        )
-    };
-    let triangles = |m: &Mesh| {
-        let mut t: Vec<_> = m
-            .triangles
-            .iter()
-            .map(|t| rotated(t.map(|v| key(m, v))))
-            .collect();
-        t.sort();
-        t
-    };
-    assert_eq!(triangles(got), triangles(want));
-    let vertices = |m: &Mesh| {
-        let mut v: Vec<_> = (0..m.positions.len() as u32).map(|v| key(m, v)).collect();
-        v.sort();
-        v
-    };
-    assert_eq!(
-        vertices(got),
-        vertices(want),
-        "vertex multiset (unreferenced ones too)"
-    );
 }
 
 fn with_attributes(mut mesh: Mesh, seed: u64) -> Mesh {

@@ -6,7 +6,7 @@
 
 mod round_trip;
 
-pub use round_trip::round_trip;
+pub use round_trip::{assert_same_in_order, assert_same_up_to_order, rotated, round_trip};
 
 use crate::io::{read_mesh_bytes, MeshFormat, ReadOptions};
 use crate::ops::{self, CornerOps, Plane};
