@@ -92,7 +92,7 @@ pub enum Built<'a> {
 pub fn encode(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<u8>> {
     mesh.validate()?;
     let table = CornerTable::from_mesh(mesh)?;
-    encode_built(mesh, Built::Table(&table), options)
+    Ok(assemble(&sections(mesh, Built::Table(&table), options)?))
 }
 
 /// Encodes `mesh` into `out` (a file, a socket, a buffer), as [`encode`].
