@@ -73,7 +73,7 @@ pub use read::Container;
 pub use topology::TopologyReport;
 
 /// Reads a mesh file of any supported format, chosen by its extension: `.obj`, `.off`,
-/// `.ply`, `.stl` or `.lrm` (a container, fully validated and decoded).
+/// `.ply`, `.stl`, `.gltf`, `.glb` or `.lrm` (a container, fully validated and decoded).
 ///
 /// # Errors
 /// [`Error::UnknownFormat`], [`Error::Io`], [`Error::Parse`] or the container reader's
@@ -83,7 +83,7 @@ pub fn load(path: impl AsRef<std::path::Path>) -> Result<Mesh> {
 }
 
 /// Writes a mesh file in the format its extension names: `.lrm` with default
-/// [`write::EncodeOptions`], or `.obj`, `.off`, `.ply`.
+/// [`write::EncodeOptions`], or `.obj`, `.off`, `.ply`, `.stl`, `.gltf`, `.glb`.
 ///
 /// # Errors
 /// [`Error::UnknownFormat`], [`Error::InvalidMesh`], [`Error::Io`].

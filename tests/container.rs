@@ -8,6 +8,7 @@ use lrmesh::fuzz_checks::{assert_same_in_order, assert_same_up_to_order, rotated
 use lrmesh::generate::{self, Rng};
 use lrmesh::io::{read_mesh, ReadOptions};
 use lrmesh::lr::Lr;
+use lrmesh::mesh::{Attribute, Semantic};
 use lrmesh::read::{open, Limits};
 use lrmesh::strips::Cts;
 use lrmesh::write::{encode, Connectivity, EncodeOptions};
@@ -33,17 +34,16 @@ fn corpus() -> Vec<(String, Mesh)> {
 fn with_attributes(mut mesh: Mesh, seed: u64) -> Mesh {
     let mut rng = Rng::new(seed);
     let n = mesh.positions.len();
-    mesh.normals = Some(
-        (0..n)
-            .map(|_| [rng.unit(), rng.unit(), -rng.unit()])
-            .collect(),
-    );
-    mesh.texcoords = Some((0..n).map(|_| [rng.unit(), rng.unit()]).collect());
-    mesh.colors = Some(
-        (0..n)
-            .map(|_| [0; 4].map(|_: u8| rng.below(256) as u8))
-            .collect(),
-    );
+    let normals: Vec<[f32; 3]> = (0..n)
+        .map(|_| [rng.unit(), rng.unit(), -rng.unit()])
+        .collect();
+    mesh.set_attribute(Attribute::per_vertex(Semantic::Normal, &normals));
+    let texcoords: Vec<[f32; 2]> = (0..n).map(|_| [rng.unit(), rng.unit()]).collect();
+    mesh.set_attribute(Attribute::per_vertex(Semantic::TexCoord(0), &texcoords));
+    let colors: Vec<[u8; 4]> = (0..n)
+        .map(|_| [0; 4].map(|_: u8| rng.below(256) as u8))
+        .collect();
+    mesh.set_attribute(Attribute::rgba8(&colors));
     mesh
 }
 

@@ -9,6 +9,7 @@ mod common;
 use std::collections::BTreeMap;
 
 use common::corpus_dir;
+use lrmesh::mesh::{Attribute, Semantic};
 use lrmesh::ops::CornerOps;
 use lrmesh::write::{encode, Connectivity, EncodeOptions};
 use lrmesh::{generate, CornerTable, Mesh, Vertex};
@@ -81,6 +82,9 @@ fn fans<M: CornerOps>(m: &M, label: impl Fn(Vertex) -> u32) -> Vec<(u32, Vec<[u3
 fn check_every_kind(mesh: &Mesh, name: &str) {
     let table = CornerTable::from_mesh(mesh).unwrap();
     let expected = fans(&table, |v| table.original_vertex(v).0);
+    let normals = mesh.vertex_values::<3>(&Semantic::Normal);
+    let texcoords = mesh.vertex_values::<2>(&Semantic::TexCoord(0));
+    let colors = mesh.vertex_colors_rgba8();
     for kind in KINDS {
         let options = EncodeOptions {
             connectivity: kind,
@@ -108,17 +112,17 @@ fn check_every_kind(mesh: &Mesh, name: &str) {
             assert!(file.position(v) == mesh.positions[x], "{name} {kind:?} {v}");
             assert_eq!(
                 file.normal(v),
-                mesh.normals.as_ref().map(|n| n[x]),
+                normals.as_ref().map(|n| n[x]),
                 "{name} {kind:?}"
             );
             assert_eq!(
                 file.texcoord(v),
-                mesh.texcoords.as_ref().map(|t| t[x]),
+                texcoords.as_ref().map(|t| t[x]),
                 "{name} {kind:?}"
             );
             assert_eq!(
                 file.color(v),
-                mesh.colors.as_ref().map(|c| c[x]),
+                colors.as_ref().map(|c| c[x]),
                 "{name} {kind:?}"
             );
             assert_eq!(
@@ -165,9 +169,12 @@ fn generated_meshes_in_every_kind() {
         generate::append(&mut mesh, &generate::torus(3, 4));
         generate::add_defects(&mut mesh, 3, &mut rng);
         let n = mesh.positions.len();
-        mesh.normals = Some((0..n).map(|i| [i as f32, 1.0, -1.0]).collect());
-        mesh.texcoords = Some((0..n).map(|i| [0.5, i as f32]).collect());
-        mesh.colors = Some((0..n).map(|i| [i as u8, 2, 3, 255]).collect());
+        let normals: Vec<[f32; 3]> = (0..n).map(|i| [i as f32, 1.0, -1.0]).collect();
+        mesh.set_attribute(Attribute::per_vertex(Semantic::Normal, &normals));
+        let texcoords: Vec<[f32; 2]> = (0..n).map(|i| [0.5, i as f32]).collect();
+        mesh.set_attribute(Attribute::per_vertex(Semantic::TexCoord(0), &texcoords));
+        let colors: Vec<[u8; 4]> = (0..n).map(|i| [i as u8, 2, 3, 255]).collect();
+        mesh.set_attribute(Attribute::rgba8(&colors));
         check_every_kind(&mesh, &format!("generated {seed}"));
         let soup = generate::soup(40, 90, &mut rng);
         check_every_kind(&soup, &format!("soup {seed}"));

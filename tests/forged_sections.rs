@@ -146,32 +146,6 @@ fn v13_positions() {
     breaks(&bad, 13, "GEOM", at + 4, "reserved");
 }
 
-/// [V14] `NORM`, `TEXC`, `COLR`: lengths `12V`, `8V`, `4V`; finite values.
-#[test]
-fn v14_attributes() {
-    let mut mesh = torus();
-    let n = mesh.positions.len();
-    mesh.normals = Some(vec![[0.0, 0.0, 1.0]; n]);
-    mesh.texcoords = Some(vec![[0.5, 0.5]; n]);
-    mesh.colors = Some(vec![[1, 2, 3, 4]; n]);
-    let bytes = encoded(&mesh, Connectivity::Lr);
-    for (tag, size) in [(Tag::NORM, 12), (Tag::TEXC, 8), (Tag::COLR, 4)] {
-        let at = section_at(&bytes, tag);
-        let bad = forge(&bytes, tag, |p| p.extend([0; 4]));
-        breaks(&bad, 14, &tag.name(), at, "");
-        let bad = forge(&bytes, tag, |p| p.truncate(size * (n - 1)));
-        breaks(&bad, 14, &tag.name(), at, "");
-        if tag != Tag::COLR {
-            let field = size * 3 + 4;
-            let bad = forge(&bytes, tag, |p| put(p, field, f32::INFINITY.to_bits()));
-            breaks(&bad, 14, &tag.name(), at + field as u64, "non-finite");
-        }
-    }
-    // Colors are bytes: any value is valid.
-    let any_color = forge(&bytes, Tag::COLR, |p| put(p, 8, u32::MAX));
-    open(&any_color, &Limits::default()).unwrap();
-}
-
 // ---------------------------------------------------------------------------------------
 // §3.6–3.8 COPY, KEPT, PERM.
 

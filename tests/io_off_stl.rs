@@ -5,6 +5,7 @@ mod common;
 
 use common::io_helpers::*;
 use lrmesh::io::MeshFormat;
+use lrmesh::mesh::Semantic;
 use lrmesh::Location;
 
 // ---------------------------------------------------------------------------------------------
@@ -25,13 +26,16 @@ fn off_variants() {
         b"NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 -1\n3 0 1 2\n",
         MeshFormat::Off,
     );
-    assert_eq!(l.mesh.normals.unwrap()[2], [0.0, 0.0, -1.0]);
+    assert_eq!(
+        l.mesh.vertex_values::<3>(&Semantic::Normal).unwrap()[2],
+        [0.0, 0.0, -1.0]
+    );
     let l = read(
         b"STOFF\n3 1\n0 0 0 0.5 1\n1 0 0 1 1\n0 1 0 0 0\n3 0 1 2\n",
         MeshFormat::Off,
     );
     assert_eq!(
-        l.mesh.texcoords.unwrap(),
+        l.mesh.vertex_values::<2>(&Semantic::TexCoord(0)).unwrap(),
         vec![[0.5, 1.0], [1.0, 1.0], [0.0, 0.0]]
     );
     let l = read(
@@ -40,14 +44,17 @@ fn off_variants() {
     );
     let m = l.mesh;
     assert_eq!(
-        m.colors.unwrap(),
+        m.vertex_colors_rgba8().unwrap(),
         vec![[255, 0, 0, 255], [0, 255, 0, 128], [0, 0, 255, 255]]
     );
     assert_eq!(
-        m.texcoords.unwrap(),
+        m.vertex_values::<2>(&Semantic::TexCoord(0)).unwrap(),
         vec![[0.5, 1.0], [1.0, 1.0], [0.0, 0.0]]
     );
-    assert_eq!(m.normals.unwrap()[0], [0.0, 0.0, 1.0]);
+    assert_eq!(
+        m.vertex_values::<3>(&Semantic::Normal).unwrap()[0],
+        [0.0, 0.0, 1.0]
+    );
 
     // Float colors (some component has a decimal point) are fractions of 255.
     let l = read(
@@ -55,7 +62,7 @@ fn off_variants() {
         MeshFormat::Off,
     );
     assert_eq!(
-        l.mesh.colors.unwrap(),
+        l.mesh.vertex_colors_rgba8().unwrap(),
         vec![[255, 0, 0, 255], [128, 64, 0, 255], [0, 0, 255, 255]]
     );
     // Integer colors all at most 1 are fractions too.
@@ -63,19 +70,19 @@ fn off_variants() {
         b"COFF\n3 1 0\n0 0 0 1 0 0\n1 0 0 0 1 0\n0 1 0 0 0 1\n3 0 1 2\n",
         MeshFormat::Off,
     );
-    assert_eq!(l.mesh.colors.unwrap()[1], [0, 255, 0, 255]);
+    assert_eq!(l.mesh.vertex_colors_rgba8().unwrap()[1], [0, 255, 0, 255]);
 
     // A plain OFF with colors on every vertex line has colors; on some lines, none.
     let l = read(
         b"OFF\n3 1 0\n0 0 0 10 20 30\n1 0 0 1 2 3 4\n0 1 0 0 0 0\n3 0 1 2\n",
         MeshFormat::Off,
     );
-    assert_eq!(l.mesh.colors.unwrap()[1], [1, 2, 3, 4]);
+    assert_eq!(l.mesh.vertex_colors_rgba8().unwrap()[1], [1, 2, 3, 4]);
     let l = read(
         b"OFF\n3 1 0\n0 0 0 10 20 30\n1 0 0\n0 1 0\n3 0 1 2\n",
         MeshFormat::Off,
     );
-    assert!(l.mesh.colors.is_none());
+    assert!(l.mesh.attribute(&Semantic::Color(0)).is_none());
     assert!(l.warnings[0].contains("only 1 of 3"), "{:?}", l.warnings);
 
     // Unreferenced vertices stay, repeated vertices give degenerate triangles, CRLF works.

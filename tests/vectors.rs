@@ -18,7 +18,8 @@ use lrmesh::read::{open, Connectivity as View, Limits};
 use lrmesh::write::{encode, Connectivity, EncodeOptions};
 use lrmesh::CornerOps;
 
-const VECTORS: [&str; 6] = [
+/// Sources, read as OFF unless named in [`OBJ_VECTORS`].
+const VECTORS: [&str; 7] = [
     "closed_tetrahedron",
     "boundary_hedra_open",
     "two_components",
@@ -29,7 +30,13 @@ const VECTORS: [&str; 6] = [
     // an unused vertex (spec/vectors/README.md): in lr-compact, stored opposites that are
     // ring corners and NONE.
     "defective_torus",
+    // Per-corner texture coordinates and normals with seams, and parts (FORMAT.md §3.9,
+    // §3.10): each container also has an attribute listing.
+    "seamed_cube",
 ];
+
+/// The sources written as OBJ (per-corner attributes, parts).
+const OBJ_VECTORS: [&str; 1] = ["seamed_cube"];
 
 fn dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("spec/vectors")
@@ -95,6 +102,73 @@ fn listing(name: &str, bytes: &[u8]) -> String {
     out
 }
 
+/// For a container with attributes or parts, one line per corner of every triangle slot
+/// (FORMAT.md §3.9): `slot corner vertex`, the value index of each attribute in file order,
+/// and the slot's part (`-` without `PART`).
+fn attribute_listing(name: &str, bytes: &[u8]) -> Option<String> {
+    let file = open(bytes, &Limits::default()).unwrap();
+    if file.attributes().is_empty() && file.parts().is_none() {
+        return None;
+    }
+    let conn = file.connectivity();
+    let mut out = String::new();
+    writeln!(
+        out,
+        "# lrmesh test vector {name}: the value of every attribute and the part at every corner"
+    )
+    .unwrap();
+    let parts = file.parts().map_or(0, |p| p.labels.parts.len());
+    writeln!(
+        out,
+        "# {} attributes, {parts} parts, {} kept triangles",
+        file.attributes().len(),
+        file.kept_triangle_count()
+    )
+    .unwrap();
+    let names: Vec<String> = (0..file.attributes().len())
+        .map(|a| format!("a{a}"))
+        .collect();
+    writeln!(out, "# slot corner vertex {} part", names.join(" ")).unwrap();
+    let part = |p: Option<u32>| p.map_or("-".to_string(), |p| p.to_string());
+    for t in conn.triangles() {
+        for (k, c) in conn.triangle_corners(t).into_iter().enumerate() {
+            let values: Vec<String> = file
+                .attributes()
+                .iter()
+                .map(|a| file.value_index(a, c).to_string())
+                .collect();
+            let v = conn.vertex(c);
+            writeln!(
+                out,
+                "{t} {k} {v} {} {}",
+                values.join(" "),
+                part(file.part_index(t))
+            )
+            .unwrap();
+        }
+    }
+    let bound = conn.triangle_id_bound();
+    for j in 0..file.kept_triangle_count() {
+        for k in 0..3 {
+            let values: Vec<String> = file
+                .attributes()
+                .iter()
+                .map(|a| file.kept_value_index(a, j, k).to_string())
+                .collect();
+            let v = file.kept_vertex(j, k);
+            let slot = bound + j;
+            writeln!(
+                out,
+                "{slot} {k} {v} {} {}",
+                values.join(" "),
+                part(file.kept_part_index(j))
+            )
+            .unwrap();
+        }
+    }
+    Some(out)
+}
+
 /// The listing of a representation with corner operators: a header with its vertex count
 /// and `counts`, then `corner vertex opposite` for every corner of every canonical triangle.
 fn corner_listing<M: CornerOps>(out: &mut String, name: &str, m: &M, counts: String) {
@@ -121,14 +195,23 @@ fn vectors_match() {
             (Connectivity::Strips, ".strips"),
             (Connectivity::LrCompact, ".lr-compact"),
         ] {
-            let source = dir().join(format!("{name}.off"));
+            let extension = if OBJ_VECTORS.contains(&name) {
+                "obj"
+            } else {
+                "off"
+            };
+            let source = dir().join(format!("{name}.{extension}"));
             let mesh = read_mesh(&source, &ReadOptions::default()).unwrap().mesh;
             let bytes = encode(&mesh, &options(connectivity)).unwrap();
             let lrm = dir().join(format!("{name}{suffix}.lrm"));
             let txt = dir().join(format!("{name}{suffix}.txt"));
+            let attributes_txt = dir().join(format!("{name}{suffix}.attributes.txt"));
             if regenerate {
                 std::fs::write(&lrm, &bytes).unwrap();
                 std::fs::write(&txt, listing(name, &bytes)).unwrap();
+                if let Some(a) = attribute_listing(name, &bytes) {
+                    std::fs::write(&attributes_txt, a).unwrap();
+                }
             }
             let stored = std::fs::read(&lrm).unwrap();
             assert_eq!(
@@ -141,10 +224,17 @@ fn vectors_match() {
                 expected,
                 "{name}: corner answers differ"
             );
-            // Decoding gives back the source exactly (the vectors keep the input order).
+            assert_eq!(
+                attribute_listing(name, &stored),
+                std::fs::read_to_string(&attributes_txt).ok(),
+                "{name}: attribute answers differ"
+            );
+            // Decoding gives back the source exactly (the vectors keep the input order),
+            // every corner's attribute values and every triangle's part included.
             let back = open(&stored, &Limits::default()).unwrap().to_mesh();
             assert_eq!(back.positions, mesh.positions, "{name}");
             assert_same_up_to_rotation(&back.triangles, &mesh.triangles, name);
+            lrmesh::fuzz_checks::assert_same_in_order(&back, &mesh);
         }
     }
 }

@@ -6,8 +6,10 @@
 //! Nothing here validates beyond what a record's shape needs; the rules live in
 //! [`crate::read`].
 
+pub mod attributes;
 pub mod layout;
 mod metadata;
+pub mod parts;
 
 pub use metadata::Metadata;
 
@@ -17,8 +19,18 @@ pub const MAGIC: [u8; 8] = [0x89, b'L', b'R', b'M', b'\r', b'\n', 0x1a, b'\n'];
 
 /// Major version written and read. A reader rejects any other major version.
 pub const MAJOR: u16 = 1;
-/// Minor version written. Readers accept any minor version of their major version.
-pub const MINOR: u16 = 0;
+/// Newest minor version written. Readers accept any minor version of their major version.
+pub const MINOR: u16 = 1;
+
+/// The minor version a file of these sections is written with: 1 with a section of version
+/// 1.1 (`ATTR`, `PART`), 0 otherwise, so that files a 1.0 reader reads whole say so.
+pub fn minor_for(tags: impl IntoIterator<Item = Tag>) -> u16 {
+    if tags.into_iter().any(|t| t == Tag::ATTR || t == Tag::PART) {
+        1
+    } else {
+        0
+    }
+}
 
 /// Size of the fixed header.
 pub const HEADER_LEN: usize = 32;
@@ -219,9 +231,13 @@ impl Tag {
     pub const KEPT: Tag = Tag(*b"KEPT");
     /// Permutations back to the input's vertex and triangle order.
     pub const PERM: Tag = Tag(*b"PERM");
+    /// Attributes per vertex or per corner, with their seams (version 1.1).
+    pub const ATTR: Tag = Tag(*b"ATTR");
+    /// Parts: object, group and material labels of the triangles (version 1.1).
+    pub const PART: Tag = Tag(*b"PART");
 
     /// The sections a version-1 reader understands.
-    pub const KNOWN: [Tag; 13] = [
+    pub const KNOWN: [Tag; 15] = [
         Tag::META,
         Tag::MESH,
         Tag::GEOM,
@@ -235,6 +251,8 @@ impl Tag {
         Tag::COPY,
         Tag::KEPT,
         Tag::PERM,
+        Tag::ATTR,
+        Tag::PART,
     ];
 
     /// Whether a version-1 reader understands the section.

@@ -4,8 +4,12 @@
 //! the library misbehaves on its input; an input the library rightly refuses passes.
 #![allow(missing_docs, clippy::missing_panics_doc)]
 
+mod gltf;
+mod obj;
 mod round_trip;
 
+pub use gltf::import_gltf;
+pub use obj::import_obj;
 pub use round_trip::{assert_same_in_order, assert_same_up_to_order, rotated, round_trip};
 
 use crate::io::{read_mesh_bytes, MeshFormat, ReadOptions};
@@ -15,11 +19,12 @@ use crate::write::{assemble, encode, Connectivity, EncodeOptions};
 use crate::{generate, Vertex};
 
 /// The fuzz targets, by name.
-pub const TARGETS: [&str; 8] = [
+pub const TARGETS: [&str; 9] = [
     "import_obj",
     "import_off",
     "import_ply",
     "import_stl",
+    "import_gltf",
     "container",
     "container_forged",
     "edgebreaker",
@@ -29,10 +34,11 @@ pub const TARGETS: [&str; 8] = [
 /// Runs target `name` on `data`.
 pub fn run(name: &str, data: &[u8]) {
     match name {
-        "import_obj" => import(MeshFormat::Obj, data),
+        "import_obj" => import_obj(data),
         "import_off" => import(MeshFormat::Off, data),
         "import_ply" => import(MeshFormat::Ply, data),
         "import_stl" => import(MeshFormat::Stl, data),
+        "import_gltf" => import_gltf(data),
         "container" => container(data),
         "container_forged" => container_forged(data),
         "edgebreaker" => edgebreaker(data),
@@ -108,6 +114,9 @@ pub fn container_forged(data: &[u8]) {
         generate::punch_holes(&mut mesh, 1, &mut rng);
         generate::add_defects(&mut mesh, 1, &mut rng);
     }
+    if choice & 0x80 != 0 {
+        with_seams_and_parts(&mut mesh);
+    }
     let options = EncodeOptions {
         connectivity: kind,
         keep_order: choice & 0x20 != 0,
@@ -134,8 +143,36 @@ pub fn container_forged(data: &[u8]) {
     container(&assemble(&sections));
 }
 
-/// Every operator of every corner answers with a valid id; stars, valences, normals and
-/// contours terminate.
+/// Per-corner texture coordinates that break along every third triangle, a per-vertex
+/// custom attribute and two parts: so that forged `ATTR` and `PART` sections are reached.
+fn with_seams_and_parts(mesh: &mut crate::Mesh) {
+    use crate::mesh::{Attribute, Part, Parts, Semantic, Values};
+    let corners: Vec<u32> = (0..3 * mesh.triangles.len() as u32)
+        .map(|c| if c % 9 == 0 { c % 4 + 3 } else { c % 3 })
+        .collect();
+    let uv: Vec<[f32; 2]> = (0..7).map(|i| [i as f32 / 7.0, 0.5]).collect();
+    mesh.attributes
+        .push(Attribute::per_corner(Semantic::TexCoord(0), &uv, corners));
+    mesh.attributes.push(Attribute {
+        semantic: Semantic::Custom("weight".into()),
+        components: 1,
+        normalized: true,
+        values: Values::U16((0..mesh.positions.len() as u16).collect()),
+        corners: None,
+    });
+    let mut parts = Parts::default();
+    for t in 0..mesh.triangles.len() {
+        let i = parts.intern(Part {
+            material: Some(["a", "b"][t % 2].into()),
+            ..Part::default()
+        });
+        parts.of_triangle.push(i);
+    }
+    mesh.parts = Some(parts);
+}
+
+/// Every operator of every corner answers with a valid id, and every attribute a value in
+/// range; stars, valences, normals and contours terminate.
 fn walk(file: &crate::Container) {
     let mesh = file.connectivity();
     let m = mesh.vertex_id_bound();
@@ -153,6 +190,24 @@ fn walk(file: &crate::Container) {
             .flatten()
         {
             assert!(mesh.is_corner(d));
+        }
+    }
+    for a in file.attributes() {
+        for c in mesh.corners() {
+            let i = file.value_index(a, c);
+            assert!(i < a.value_count());
+            a.value_f32(i);
+        }
+        for j in 0..file.kept_triangle_count() {
+            for k in 0..3 {
+                assert!(file.kept_value_index(a, j, k) < a.value_count());
+            }
+        }
+    }
+    if let Some(parts) = file.parts() {
+        for t in mesh.triangles() {
+            let p = file.part_index(t).expect("the file has parts");
+            assert!((p as usize) < parts.labels.parts.len());
         }
     }
     let mut corners_seen = 0usize;

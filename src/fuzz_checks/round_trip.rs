@@ -7,6 +7,7 @@
 use arbitrary::{Result, Unstructured};
 
 use crate::lr::LrOptions;
+use crate::mesh::{Attribute, Part, Parts, Semantic};
 use crate::read::{open, Limits};
 use crate::write::{encode, Connectivity, EncodeOptions};
 use crate::Mesh;
@@ -28,14 +29,41 @@ fn soup(u: &mut Unstructured) -> Result<(Mesh, EncodeOptions)> {
         }
         mesh.triangles.push(t);
     }
+    let corners = 3 * mesh.triangles.len();
     if u.arbitrary()? {
-        mesh.normals = Some((0..vertices).map(|v| [v as f32, 0.5, -1.0]).collect());
+        let normals: Vec<[f32; 3]> = (0..vertices).map(|v| [v as f32, 0.5, -1.0]).collect();
+        mesh.attributes
+            .push(Attribute::per_vertex(Semantic::Normal, &normals));
     }
     if u.arbitrary()? {
-        mesh.texcoords = Some((0..vertices).map(|v| [v as f32 / 3.0, 0.25]).collect());
+        // Per corner with seams: a few values, each corner picking one.
+        let count = u.int_in_range(1..=8u32)?;
+        let values: Vec<[f32; 2]> = (0..count).map(|i| [i as f32 / 3.0, 0.25]).collect();
+        let mut index = Vec::with_capacity(corners);
+        for _ in 0..corners {
+            index.push(u.int_in_range(0..=count - 1)?);
+        }
+        mesh.attributes
+            .push(Attribute::per_corner(Semantic::TexCoord(0), &values, index));
     }
     if u.arbitrary()? {
-        mesh.colors = Some((0..vertices).map(|v| [v as u8, 7, 9, 255]).collect());
+        let colors: Vec<[u8; 4]> = (0..vertices).map(|v| [v as u8, 7, 9, 255]).collect();
+        mesh.attributes.push(Attribute::rgba8(&colors));
+    }
+    if u.arbitrary()? {
+        // Parts: a label per triangle.
+        let mut parts = Parts::default();
+        for _ in 0..mesh.triangles.len() {
+            let p = u.int_in_range(0..=2u32)?;
+            let part = Part {
+                material: Some(format!("m{p}")),
+                group: (p == 1).then(|| "g".to_string()),
+                object: None,
+            };
+            let i = parts.intern(part);
+            parts.of_triangle.push(i);
+        }
+        mesh.parts = Some(parts);
     }
     let options = EncodeOptions {
         connectivity: match u.int_in_range(0..=3u8)? {
@@ -58,50 +86,108 @@ fn soup(u: &mut Unstructured) -> Result<(Mesh, EncodeOptions)> {
 
 /// A triangle as its lexicographically smallest rotation, so that two rotations of one
 /// triangle compare equal even when it repeats an entry.
-pub fn rotated<T: Ord + Copy>(t: [T; 3]) -> [T; 3] {
-    [t, [t[1], t[2], t[0]], [t[2], t[0], t[1]]]
-        .into_iter()
-        .min()
-        .unwrap_or(t)
+pub fn rotated<T: Ord + Clone>(t: [T; 3]) -> [T; 3] {
+    let [a, b, c] = t;
+    let first = [a.clone(), b.clone(), c.clone()];
+    let second = [b.clone(), c.clone(), a.clone()];
+    let third = [c, a, b];
+    first.min(second).min(third)
 }
 
-/// Same triangles, in order, up to rotation; same vertices and attributes.
+/// What a corner carries: its position's bits and, for each attribute (by semantic), the
+/// bytes of its value; with the triangle's part labels.
+type CornerKey = ([u32; 3], Vec<Vec<u8>>);
+
+fn corner_keys(m: &Mesh, t: usize) -> [CornerKey; 3] {
+    let tri = m.triangles[t];
+    let mut attributes: Vec<&Attribute> = m.attributes.iter().collect();
+    attributes.sort_by(|a, b| a.semantic.cmp(&b.semantic));
+    [0, 1, 2].map(|k| {
+        let values = attributes
+            .iter()
+            .map(|a| a.corner_bytes(t, k, tri))
+            .collect();
+        (m.positions[tri[k] as usize].map(f32::to_bits), values)
+    })
+}
+
+/// The semantics, bindings and types of the attributes, and the part of each triangle.
+fn shape(m: &Mesh) -> Vec<(crate::mesh::Semantic, bool, u8, bool)> {
+    let mut s: Vec<_> = m
+        .attributes
+        .iter()
+        .map(|a| {
+            (
+                a.semantic.clone(),
+                a.is_per_corner(),
+                a.components,
+                a.normalized,
+            )
+        })
+        .collect();
+    s.sort_by(|a, b| a.0.cmp(&b.0));
+    s
+}
+
+fn part_of(m: &Mesh, t: usize) -> Option<Part> {
+    m.parts.as_ref().map(|p| p.of(t).clone())
+}
+
+/// Per-vertex values of the per-vertex attributes of vertex `v` (the only place where an
+/// unreferenced vertex keeps anything beyond its position).
+fn vertex_key(m: &Mesh, v: usize) -> ([u32; 3], Vec<Vec<u8>>) {
+    let mut attributes: Vec<&Attribute> =
+        m.attributes.iter().filter(|a| !a.is_per_corner()).collect();
+    attributes.sort_by(|a, b| a.semantic.cmp(&b.semantic));
+    let values = attributes
+        .iter()
+        .map(|a| {
+            let mut out = Vec::new();
+            a.value_bytes(v, &mut out);
+            out
+        })
+        .collect();
+    (m.positions[v].map(f32::to_bits), values)
+}
+
+/// Same triangles, in order, up to rotation; same vertices, attributes at every corner and
+/// parts.
 pub fn assert_same_in_order(got: &Mesh, want: &Mesh) {
     assert_eq!(got.positions, want.positions);
-    assert_eq!(got.normals, want.normals);
-    assert_eq!(got.texcoords, want.texcoords);
-    assert_eq!(got.colors, want.colors);
+    assert_eq!(shape(got), shape(want), "attributes");
     assert_eq!(got.triangles.len(), want.triangles.len());
+    for (v, _) in want.positions.iter().enumerate() {
+        assert_eq!(vertex_key(got, v), vertex_key(want, v), "vertex {v}");
+    }
     for (k, (g, w)) in got.triangles.iter().zip(&want.triangles).enumerate() {
         assert_eq!(rotated(*g), rotated(*w), "triangle {k}");
+        assert_eq!(
+            rotated(corner_keys(got, k)),
+            rotated(corner_keys(want, k)),
+            "corners of triangle {k}"
+        );
+        assert_eq!(part_of(got, k), part_of(want, k), "part of triangle {k}");
     }
+    let libraries = |m: &Mesh| m.parts.as_ref().map(|p| p.material_libraries.clone());
+    assert_eq!(libraries(got), libraries(want));
 }
 
 /// Same triangles on the same positions, in any order: compares the sorted lists of triangles
-/// written as (position, attributes) triples.
+/// written as (position, attribute values) per corner, with their parts; and the multiset
+/// of vertices with their per-vertex values.
 pub fn assert_same_up_to_order(got: &Mesh, want: &Mesh) {
     assert_eq!(got.positions.len(), want.positions.len(), "vertex count");
-    let key = |m: &Mesh, v: u32| {
-        let v = v as usize;
-        (
-            m.positions[v].map(f32::to_bits),
-            m.normals.as_ref().map(|n| n[v].map(f32::to_bits)),
-            m.texcoords.as_ref().map(|t| t[v].map(f32::to_bits)),
-            m.colors.as_ref().map(|c| c[v]),
-        )
-    };
+    assert_eq!(shape(got), shape(want), "attributes");
     let triangles = |m: &Mesh| {
-        let mut t: Vec<_> = m
-            .triangles
-            .iter()
-            .map(|t| rotated(t.map(|v| key(m, v))))
+        let mut t: Vec<_> = (0..m.triangles.len())
+            .map(|t| (rotated(corner_keys(m, t)), part_of(m, t)))
             .collect();
         t.sort();
         t
     };
     assert_eq!(triangles(got), triangles(want));
     let vertices = |m: &Mesh| {
-        let mut v: Vec<_> = (0..m.positions.len() as u32).map(|v| key(m, v)).collect();
+        let mut v: Vec<_> = (0..m.positions.len()).map(|v| vertex_key(m, v)).collect();
         v.sort();
         v
     };

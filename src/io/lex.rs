@@ -13,11 +13,12 @@ pub(crate) struct Lines<'a> {
 }
 
 impl<'a> Lines<'a> {
-    /// Lines of `bytes`, starting at line 1.
+    /// Lines of `bytes`, starting at line 1, after a UTF-8 byte-order mark if the input
+    /// starts with one (offsets still count from the start of `bytes`).
     pub(crate) fn new(bytes: &'a [u8]) -> Lines<'a> {
         Lines {
             bytes,
-            pos: 0,
+            pos: bom_len(bytes),
             line: 1,
         }
     }
@@ -146,15 +147,56 @@ impl<'a> Tokens<'a> {
     }
 }
 
-/// A token for an error message: lossy UTF-8, cut to a readable length.
-pub(crate) fn show(tok: &[u8]) -> String {
-    const MAX: usize = 40;
-    let s = String::from_utf8_lossy(&tok[..tok.len().min(MAX)]);
-    if tok.len() > MAX {
-        format!("{s}...")
+/// The UTF-8 byte-order mark, which some editors put at the start of text files.
+pub(crate) const BOM: &[u8] = b"\xEF\xBB\xBF";
+
+/// Length of the byte-order mark at the start of `bytes`: 3 or 0.
+pub(crate) fn bom_len(bytes: &[u8]) -> usize {
+    if bytes.starts_with(BOM) {
+        BOM.len()
     } else {
-        s.into_owned()
+        0
     }
+}
+
+/// A token for a message, cut to a readable length and [`escape`]d.
+pub(crate) fn show(tok: &[u8]) -> String {
+    show_at_most(tok, 40)
+}
+
+/// At most `max` bytes of `tok` for a message, [`escape`]d, with `...` when cut.
+pub(crate) fn show_at_most(tok: &[u8], max: usize) -> String {
+    let mut s = escape(&tok[..tok.len().min(max)]);
+    if tok.len() > max {
+        s.push_str("...");
+    }
+    s
+}
+
+/// File content made safe to print: control characters (`\t`, `\u{1b}`, ...), the
+/// invisible characters that reorder or hide text (bidirectional controls, the byte-order
+/// mark) and bytes that are not UTF-8 (`\xff`) written as escapes, so that a message never
+/// sends raw control bytes to a terminal.
+pub(crate) fn escape(bytes: &[u8]) -> String {
+    use std::fmt::Write;
+    let mut out = String::with_capacity(bytes.len());
+    for chunk in bytes.utf8_chunks() {
+        for c in chunk.valid().chars() {
+            let hidden = matches!(
+                c,
+                '\u{200b}'..='\u{200f}' | '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}' | '\u{feff}'
+            );
+            if c.is_control() || hidden {
+                out.extend(c.escape_default());
+            } else {
+                out.push(c);
+            }
+        }
+        for b in chunk.invalid() {
+            let _ = write!(out, "\\x{b:02x}");
+        }
+    }
+    out
 }
 
 /// Parses a finite `f32`. `what` names the value in the error message ("x coordinate").
@@ -250,6 +292,27 @@ mod tests {
         assert_eq!(t.next_token(), None);
         assert!(t.at_end());
         assert_eq!(t.line(), 11);
+    }
+
+    #[test]
+    fn byte_order_mark_is_skipped() {
+        let mut l = Lines::new(b"\xEF\xBB\xBFv 1\nf");
+        assert_eq!(l.next_line(), Some((1, &b"v 1"[..])));
+        assert_eq!(l.offset(), 7);
+        assert_eq!(
+            Lines::new(b"\xEF\xBB").next_line(),
+            Some((1, &b"\xEF\xBB"[..]))
+        );
+    }
+
+    #[test]
+    fn shown_content_has_no_control_bytes() {
+        assert_eq!(show(b"a\x1b[31mb\tc\x7f"), "a\\u{1b}[31mb\\tc\\u{7f}");
+        assert_eq!(show(b"\xff\xfeok"), "\\xff\\xfeok");
+        assert_eq!(show("é\u{202e}x".as_bytes()), "é\\u{202e}x");
+        assert_eq!(show_at_most(b"abcdef", 3), "abc...");
+        let all: Vec<u8> = (0..=255).collect();
+        assert!(!show_at_most(&all, 256).chars().any(char::is_control));
     }
 
     #[test]

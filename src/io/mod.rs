@@ -1,10 +1,11 @@
-//! Mesh importers and exporters: OBJ, OFF, PLY, STL.
+//! Mesh importers and exporters: OBJ, OFF, PLY, STL, glTF 2.0 (`.gltf` and `.glb`).
 //!
 //! Every reader follows the same rules:
 //!
 //! - **Vertex identity is the file's.** One mesh vertex per vertex record, in file order;
 //!   unreferenced vertices are kept and nothing is merged (STL, which has no shared vertices,
-//!   merges bit-identical corners only when asked, see [`ReadOptions::weld`]).
+//!   and glTF, which splits vertices at seams, merge equal positions only when asked, see
+//!   [`ReadOptions::weld`]).
 //! - **Polygons are fan-triangulated** in file order: `(v0, v1, ..., vk)` gives
 //!   `(v0, vi, vi+1)`. Repeated vertices inside a polygon are kept, so degenerate triangles
 //!   survive; no triangle is dropped or reordered. A face with fewer than 3 vertices is an error.
@@ -13,8 +14,13 @@
 //!   the file cannot hold, a truncated body, a NaN or infinite coordinate, normal or texture
 //!   coordinate, an unparsable number, an unsupported header item. No input makes a reader
 //!   panic or hang, and no allocation is sized by a header count that the bytes present cannot
-//!   back. Things that are read but not used (skipped PLY properties, OBJ seams, trailing
-//!   content) are reported in [`Loaded::warnings`].
+//!   back. Things that are read but not used or adjusted (skipped PLY properties and header
+//!   lines, values added for OBJ corners without one, trailing content) are reported in
+//!   [`Loaded::warnings`], and messages quote file content with control bytes escaped.
+//! - **No input is an empty mesh by accident**: a file with no vertex or face statement (OBJ),
+//!   or with `solid` and nothing after it (ASCII STL), is an error; OFF, PLY and STL files
+//!   that declare zero vertices or facets in their header are empty meshes. A UTF-8
+//!   byte-order mark at the start of a text file is skipped.
 //! - Vertex and triangle counts stay inside the limits of [`Mesh::validate`], so a mesh that
 //!   a reader returns always validates.
 //!
@@ -25,6 +31,7 @@
 //! written in the shortest form that parses back to the same bits (including `-0` and
 //! subnormals).
 
+pub mod gltf;
 mod lex;
 pub mod obj;
 pub mod off;
@@ -47,16 +54,21 @@ pub enum MeshFormat {
     Off,
     /// Polygon File Format, ASCII or binary of either byte order.
     Ply,
-    /// Stereolithography, ASCII or binary.
+    /// Stereolithography, ASCII or binary; written binary.
     Stl,
+    /// glTF 2.0 JSON (`.gltf`), buffers in `data:` URIs or external files; written
+    /// self-contained.
+    Gltf,
+    /// glTF 2.0 binary container (`.glb`).
+    Glb,
     /// This crate's container (`.lrm`), read fully validated and written with default
     /// [`EncodeOptions`](crate::write::EncodeOptions).
     Lrm,
 }
 
 impl MeshFormat {
-    /// The format named by a file's extension (`.obj`, `.off`, `.ply`, `.stl`, `.lrm`, in any
-    /// case).
+    /// The format named by a file's extension (`.obj`, `.off`, `.ply`, `.stl`, `.gltf`, `.glb`,
+    /// `.lrm`, in any case).
     ///
     /// # Errors
     /// [`Error::UnknownFormat`] when the extension is missing or not one of those.
@@ -70,16 +82,20 @@ impl MeshFormat {
             Some("off") => Ok(MeshFormat::Off),
             Some("ply") => Ok(MeshFormat::Ply),
             Some("stl") => Ok(MeshFormat::Stl),
+            Some("gltf") => Ok(MeshFormat::Gltf),
+            Some("glb") => Ok(MeshFormat::Glb),
             Some("lrm") => Ok(MeshFormat::Lrm),
             Some(other) => Err(Error::UnknownFormat {
                 path: path.to_path_buf(),
                 reason: format!(
-                    "unknown extension `.{other}`; expected .obj, .off, .ply, .stl or .lrm"
+                    "unknown extension `.{other}`; expected .obj, .off, .ply, .stl, .gltf, \
+                     .glb or .lrm"
                 ),
             }),
             None => Err(Error::UnknownFormat {
                 path: path.to_path_buf(),
-                reason: "no file extension; expected .obj, .off, .ply, .stl or .lrm".to_string(),
+                reason: "no file extension; expected .obj, .off, .ply, .stl, .gltf, .glb or .lrm"
+                    .to_string(),
             }),
         }
     }
@@ -91,6 +107,8 @@ impl MeshFormat {
             MeshFormat::Off => "OFF",
             MeshFormat::Ply => "PLY",
             MeshFormat::Stl => "STL",
+            MeshFormat::Gltf => "glTF",
+            MeshFormat::Glb => "GLB",
             MeshFormat::Lrm => "LRM",
         }
     }
@@ -102,12 +120,38 @@ impl fmt::Display for MeshFormat {
     }
 }
 
+/// A mesh with the per-vertex attributes of the formats that have only those (OFF, PLY).
+pub(crate) fn vertex_mesh(
+    positions: Vec<[f32; 3]>,
+    triangles: Vec<[u32; 3]>,
+    normals: Option<Vec<[f32; 3]>>,
+    texcoords: Option<Vec<[f32; 2]>>,
+    colors: Option<Vec<[u8; 4]>>,
+) -> Mesh {
+    use crate::mesh::{Attribute, Semantic};
+    let mut mesh = Mesh::new(positions, triangles);
+    if let Some(n) = normals {
+        mesh.attributes
+            .push(Attribute::per_vertex(Semantic::Normal, &n));
+    }
+    if let Some(t) = texcoords {
+        mesh.attributes
+            .push(Attribute::per_vertex(Semantic::TexCoord(0), &t));
+    }
+    if let Some(c) = colors {
+        mesh.attributes.push(Attribute::rgba8(&c));
+    }
+    mesh
+}
+
 /// Options for the readers.
 #[derive(Debug, Clone, Default)]
 pub struct ReadOptions {
-    /// STL only: merge corners whose positions are bit-identical (with `-0.0` equal to `0.0`)
-    /// into one vertex, numbered in order of first appearance. Without it every triangle
-    /// corner of an STL file is a vertex of its own.
+    /// STL and glTF only: merge vertices whose positions are bit-identical (with `-0.0` equal
+    /// to `0.0`) into one vertex, numbered in order of first appearance. Without it every
+    /// triangle corner of an STL file is a vertex of its own, and a glTF file keeps its
+    /// vertices as stored, split wherever an attribute changes. For glTF the merge is
+    /// [`Mesh::weld`]: attributes that differ between merged vertices become per corner.
     pub weld: bool,
 }
 
@@ -120,13 +164,17 @@ pub struct Loaded {
     pub warnings: Vec<String>,
 }
 
-/// Reads a mesh file, choosing the format by the file's extension.
+/// Reads a mesh file, choosing the format by the file's extension. A `.gltf`'s external
+/// buffers are read from the file's directory ([`gltf::read_file`]).
 ///
 /// # Errors
 /// [`Error::UnknownFormat`] for an unknown extension, [`Error::Io`] when the file cannot be
 /// read, [`Error::Parse`] (with the file name attached) when it is malformed.
 pub fn read_mesh(path: &Path, opts: &ReadOptions) -> Result<Loaded> {
     let format = MeshFormat::from_path(path)?;
+    if matches!(format, MeshFormat::Gltf | MeshFormat::Glb) {
+        return gltf::read_file(path, opts);
+    }
     let bytes = std::fs::read(path).map_err(|source| Error::Io {
         path: path.to_path_buf(),
         source,
@@ -134,7 +182,9 @@ pub fn read_mesh(path: &Path, opts: &ReadOptions) -> Result<Loaded> {
     read_mesh_bytes(&bytes, format, opts).map_err(|e| e.with_file(path))
 }
 
-/// Reads a mesh from the bytes of a file in the given format.
+/// Reads a mesh from the bytes of a file in the given format. A `.gltf` must hold its buffers
+/// in `data:` URIs (with bytes alone, there is no directory to find external ones in; see
+/// [`gltf::read_with`]).
 ///
 /// # Errors
 /// [`Error::Parse`] when the bytes are not a valid file of that format ([`Error::Format`] and
@@ -145,6 +195,7 @@ pub fn read_mesh_bytes(bytes: &[u8], format: MeshFormat, opts: &ReadOptions) -> 
         MeshFormat::Off => off::read(bytes, opts),
         MeshFormat::Ply => ply::read(bytes, opts),
         MeshFormat::Stl => stl::read(bytes, opts),
+        MeshFormat::Gltf | MeshFormat::Glb => gltf::read(bytes, opts),
         MeshFormat::Lrm => Ok(Loaded {
             mesh: crate::read::open(bytes, &crate::read::Limits::default())?.to_mesh(),
             warnings: Vec::new(),
@@ -154,18 +205,16 @@ pub fn read_mesh_bytes(bytes: &[u8], format: MeshFormat, opts: &ReadOptions) -> 
     Ok(loaded)
 }
 
-/// Writes a mesh to a file, choosing the format by the file's extension: OBJ, OFF or binary
-/// little-endian PLY.
+/// Writes a mesh to a file, choosing the format by the file's extension: OBJ, OFF, binary
+/// little-endian PLY, binary STL (positions only: every triangle its own corners, attributes and
+/// parts lost; [`stl::write_ascii`] writes ASCII), self-contained glTF ([`gltf::write_gltf`]),
+/// GLB ([`gltf::write_glb`]) or a container.
 ///
 /// # Errors
-/// [`Error::UnknownFormat`] for an unknown extension or `.stl` (writing STL, which cannot keep
-/// shared vertices, is only offered by [`stl::write_binary`] and [`stl::write_ascii`]);
-/// [`Error::InvalidMesh`] when the mesh does not validate; [`Error::Io`] when writing fails.
+/// [`Error::UnknownFormat`] for an unknown extension; [`Error::InvalidMesh`] when the mesh does
+/// not validate; [`Error::Io`] when writing fails.
 pub fn write_mesh(path: &Path, mesh: &Mesh) -> Result<()> {
     let format = MeshFormat::from_path(path)?;
-    if format == MeshFormat::Stl {
-        return Err(stl_write_unsupported(path));
-    }
     mesh.validate()?;
     let io_err = |source| Error::Io {
         path: path.to_path_buf(),
@@ -189,15 +238,12 @@ pub fn write_mesh(path: &Path, mesh: &Mesh) -> Result<()> {
     write_format(file, mesh, format).map_err(io_err)
 }
 
-/// Writes a mesh in the given format (OBJ, OFF or binary little-endian PLY) to a writer.
+/// Writes a mesh in the given format to a writer, as [`write_mesh`] does.
 ///
 /// # Errors
-/// [`Error::UnknownFormat`] for [`MeshFormat::Stl`]; [`Error::InvalidMesh`] when the mesh does
-/// not validate; [`Error::Io`] (with the path `<output>`) when writing fails.
+/// [`Error::InvalidMesh`] when the mesh does not validate; [`Error::Io`] (with the path
+/// `<output>`) when writing fails.
 pub fn write_mesh_to<W: Write>(w: W, mesh: &Mesh, format: MeshFormat) -> Result<()> {
-    if format == MeshFormat::Stl {
-        return Err(stl_write_unsupported(Path::new("<output>")));
-    }
     mesh.validate()?;
     let io_err = |source| Error::Io {
         path: PathBuf::from("<output>"),
@@ -219,19 +265,12 @@ fn write_format<W: Write>(w: W, mesh: &Mesh, format: MeshFormat) -> std::io::Res
         MeshFormat::Off => off::write(w, mesh),
         MeshFormat::Ply => ply::write(w, mesh),
         MeshFormat::Stl => stl::write_binary(w, mesh),
+        MeshFormat::Gltf => gltf::write_gltf(w, mesh),
+        MeshFormat::Glb => gltf::write_glb(w, mesh),
         // Containers are written by `write::encode_to`, before this is reached.
         MeshFormat::Lrm => Err(std::io::Error::other(
             "containers are not a text mesh format",
         )),
-    }
-}
-
-fn stl_write_unsupported(path: &Path) -> Error {
-    Error::UnknownFormat {
-        path: path.to_path_buf(),
-        reason: "writing STL is not supported by write_mesh (STL cannot keep shared vertices); \
-                 use lrmesh::io::stl::write_binary"
-            .to_string(),
     }
 }
 
@@ -444,6 +483,14 @@ mod tests {
             MeshFormat::Off
         );
         assert!(MeshFormat::from_path(Path::new("a/b")).is_err());
-        assert!(MeshFormat::from_path(Path::new("a/b.gltf")).is_err());
+        assert_eq!(
+            MeshFormat::from_path(Path::new("a/b.GLB")).unwrap(),
+            MeshFormat::Glb
+        );
+        assert_eq!(
+            MeshFormat::from_path(Path::new("b.gltf")).unwrap(),
+            MeshFormat::Gltf
+        );
+        assert!(MeshFormat::from_path(Path::new("a/b.fbx")).is_err());
     }
 }

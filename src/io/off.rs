@@ -27,7 +27,7 @@ use super::{
     MAX_VERTICES,
 };
 use crate::error::{Location, Result};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Semantic};
 
 const FORMAT: &str = "OFF";
 
@@ -275,13 +275,13 @@ pub fn read(bytes: &[u8], _opts: &ReadOptions) -> Result<Loaded> {
         }
         None
     };
-    let mesh = Mesh {
+    let mesh = super::vertex_mesh(
         positions,
         triangles,
-        normals: layout.normals.then_some(normals),
-        texcoords: layout.texcoords.then_some(texcoords),
+        layout.normals.then_some(normals),
+        layout.texcoords.then_some(texcoords),
         colors,
-    };
+    );
     Ok(Loaded { mesh, warnings })
 }
 
@@ -297,22 +297,25 @@ pub fn read(bytes: &[u8], _opts: &ReadOptions) -> Result<Loaded> {
 pub fn write<W: Write>(w: W, mesh: &Mesh) -> std::io::Result<()> {
     check_writable(mesh)?;
     let mut w = BufWriter::new(w);
-    let st = if mesh.texcoords.is_some() { "ST" } else { "" };
-    let c = if mesh.colors.is_some() { "C" } else { "" };
-    let n = if mesh.normals.is_some() { "N" } else { "" };
+    let mesh = &mesh.split_seams();
+    let normals = mesh.vertex_values::<3>(&Semantic::Normal);
+    let texcoords = mesh.vertex_values::<2>(&Semantic::TexCoord(0));
+    let colors = mesh.vertex_colors_rgba8();
+    let st = if texcoords.is_some() { "ST" } else { "" };
+    let c = if colors.is_some() { "C" } else { "" };
+    let n = if normals.is_some() { "N" } else { "" };
     writeln!(w, "{st}{c}{n}OFF")?;
     writeln!(w, "{} {} 0", mesh.positions.len(), mesh.triangles.len())?;
-    let colors_as_fractions = mesh
-        .colors
+    let colors_as_fractions = colors
         .as_ref()
         .is_some_and(|cs| cs.iter().flatten().all(|&x| x <= 1));
     for (i, p) in mesh.positions.iter().enumerate() {
         write!(w, "{} {} {}", Float(p[0]), Float(p[1]), Float(p[2]))?;
-        if let Some(nm) = &mesh.normals {
+        if let Some(nm) = &normals {
             let v = nm[i];
             write!(w, " {} {} {}", Float(v[0]), Float(v[1]), Float(v[2]))?;
         }
-        if let Some(cs) = &mesh.colors {
+        if let Some(cs) = &colors {
             for x in cs[i] {
                 if colors_as_fractions {
                     write!(w, " {}", Float(super::u8_to_unit(x)))?;
@@ -321,7 +324,7 @@ pub fn write<W: Write>(w: W, mesh: &Mesh) -> std::io::Result<()> {
                 }
             }
         }
-        if let Some(tc) = &mesh.texcoords {
+        if let Some(tc) = &texcoords {
             write!(w, " {} {}", Float(tc[i][0]), Float(tc[i][1]))?;
         }
         writeln!(w)?;

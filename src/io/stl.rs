@@ -1,16 +1,17 @@
 //! STL (stereolithography) reading and writing.
 //!
 //! A file is binary when its length is exactly `84 + 50 * count`, with `count` the
-//! little-endian `u32` at byte 80; otherwise it is ASCII when it starts with `solid` (after
-//! optional white space, in any case); otherwise it is an error. A file that starts with
-//! `solid`, fails to parse as ASCII and holds a NUL byte is reported as a binary file of the
-//! wrong length.
+//! little-endian `u32` at byte 80; otherwise it is ASCII when it starts with `solid` (in any
+//! case, after an optional UTF-8 byte-order mark and white space); otherwise it is an error.
+//! A file that starts with `solid`, fails to parse as ASCII and holds a NUL byte is reported
+//! as a binary file of the wrong length.
 //!
 //! ASCII files are `solid [name]`, then facets `facet normal nx ny nz`, `outer loop`,
 //! `vertex x y z` (three or more; a polygon is fan-triangulated), `endloop`, `endfacet`, and
 //! `endsolid [name]`; several solids may follow one another. Keywords are matched without
 //! regard to case. A file that ends after a complete facet but before `endsolid` is read with
-//! a warning.
+//! a warning; one that ends after `solid` with no facet is an error (a file that declares an
+//! empty solid, `solid` then `endsolid`, is an empty mesh).
 //!
 //! STL stores no shared vertices: every triangle corner becomes a vertex of its own, unless
 //! [`ReadOptions::weld`] merges corners with bit-identical positions (`-0.0` equal to `0.0`)
@@ -104,9 +105,9 @@ pub fn read(bytes: &[u8], opts: &ReadOptions) -> Result<Loaded> {
         };
         perr(FORMAT, Location::Byte(size.min(len)), message)
     };
-    let text = bytes.trim_ascii_start();
+    let text = bytes[lex::bom_len(bytes)..].trim_ascii_start();
     if text.len() >= 5 && text[..5].eq_ignore_ascii_case(b"solid") {
-        return read_ascii(bytes, opts).map_err(|e| match binary {
+        return read_ascii(&bytes[lex::bom_len(bytes)..], opts).map_err(|e| match binary {
             Some((count, size)) if bytes.contains(&0) => size_error(count, size),
             _ => e,
         });
@@ -209,6 +210,14 @@ fn read_ascii(bytes: &[u8], opts: &ReadOptions) -> Result<Loaded> {
                     break;
                 }
                 Some((tok, line)) if keyword(tok, "facet") => line,
+                None if triangles.is_empty() => {
+                    // Nothing but `solid`: text that happens to start with the word.
+                    return Err(perr(
+                        FORMAT,
+                        Location::Line(tokens.line()),
+                        "the file ends after `solid` without any `facet` or `endsolid`",
+                    ));
+                }
                 None => {
                     warnings.push("the file ends without `endsolid`".to_string());
                     break 'solids;

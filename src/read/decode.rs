@@ -4,8 +4,10 @@
 
 use super::Container;
 use crate::corner_table::NONE;
-use crate::format::le_f32;
 use crate::ids::Vertex;
+use crate::mesh::seams::gather;
+use crate::mesh::{Attribute, Parts, Values};
+use crate::ops::CornerOps;
 use crate::words::{LeWords, Words};
 use crate::Mesh;
 
@@ -32,35 +34,63 @@ impl Container<'_> {
             let (copy, original) = (self.copies.at(2 * i), self.copies.at(2 * i + 1));
             output[copy as usize] = output[original as usize];
         }
-        let mut triangles: Vec<[u32; 3]> =
-            Vec::with_capacity(self.triangles as usize + self.kept.count() / 3);
-        self.connectivity
-            .for_each_triangle(|t| triangles.push(t.map(|v| output[v as usize])));
-        for i in 0..self.kept.count() / 3 {
-            triangles.push([0, 1, 2].map(|k| output[self.kept.at(3 * i + k) as usize]));
+        // Every triangle as (slot, container vertices), connectivity's then kept ones.
+        let conn = &self.connectivity;
+        let kept_count = self.kept.count() / 3;
+        let mut slots: Vec<(u32, [u32; 3])> =
+            Vec::with_capacity(self.triangles as usize + kept_count);
+        for t in conn.triangles() {
+            slots.push((t.0, conn.triangle_vertices(t).map(|v| v.0)));
         }
-        let floats = |b: &[u8], v: u32, n: usize, k: usize| le_f32(b, 4 * (n * v as usize + k));
+        let bound = conn.triangle_id_bound();
+        for j in 0..kept_count {
+            let tri = [0, 1, 2].map(|k| self.kept.at(3 * j + k));
+            slots.push((bound + j as u32, tri));
+        }
+        let triangles = slots
+            .iter()
+            .map(|(_, tri)| tri.map(|v| output[v as usize]))
+            .collect();
+        let attributes = self
+            .attributes
+            .iter()
+            .map(|a| {
+                let mut values = Values::with_capacity(a.component_type, 0);
+                let corners = if a.per_corner {
+                    for i in 0..a.value_count() {
+                        values.push_le(a.value_bytes(i));
+                    }
+                    let index = slots
+                        .iter()
+                        .flat_map(|&(t, tri)| {
+                            (0..3).map(move |k| a.value_index(t, k, tri[k], self.vertices))
+                        })
+                        .collect();
+                    Some(index)
+                } else {
+                    for &v in &order {
+                        values.push_le(a.value_bytes(v));
+                    }
+                    None
+                };
+                Attribute {
+                    semantic: a.semantic.clone(),
+                    components: a.components,
+                    normalized: a.normalized,
+                    values,
+                    corners,
+                }
+            })
+            .collect();
+        let parts = self.parts.as_ref().map(|p| Parts {
+            of_triangle: slots.iter().map(|&(t, _)| p.part_of_slot(t)).collect(),
+            ..p.labels.clone()
+        });
         let mut mesh = Mesh {
             positions: order.iter().map(|&v| self.position(Vertex(v))).collect(),
             triangles,
-            normals: self.normals.map(|b| {
-                order
-                    .iter()
-                    .map(|&v| [0, 1, 2].map(|k| floats(b, v, 3, k)))
-                    .collect()
-            }),
-            texcoords: self.texcoords.map(|b| {
-                order
-                    .iter()
-                    .map(|&v| [0, 1].map(|k| floats(b, v, 2, k)))
-                    .collect()
-            }),
-            colors: self.colors.map(|b| {
-                order
-                    .iter()
-                    .map(|&v| [0, 1, 2, 3].map(|k| b[4 * v as usize + k]))
-                    .collect()
-            }),
+            attributes,
+            parts,
         };
         if let Some((vertices, tris)) = self.perm {
             mesh = reorder(mesh, vertices, tris);
@@ -80,16 +110,40 @@ fn reorder(mesh: Mesh, vertices: LeWords, tris: LeWords) -> Mesh {
         out
     }
     let to_v = |k: usize| vertices.at(k) as usize;
+    let to_t = |j: usize| tris.at(j) as usize;
     let renamed: Vec<[u32; 3]> = mesh
         .triangles
         .iter()
         .map(|t| t.map(|v| vertices.at(v as usize)))
         .collect();
+    let attributes = mesh
+        .attributes
+        .iter()
+        .map(|a| match &a.corners {
+            // Values stay; each triangle's three corner indices move with it.
+            Some(index) => {
+                let by_triangle: Vec<[u32; 3]> =
+                    index.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+                let moved = permute(&by_triangle, to_t);
+                gather(a, (0..a.value_count()).map(Some), Some(moved.concat()))
+            }
+            None => {
+                let mut from = vec![0; a.value_count()];
+                for k in 0..from.len() {
+                    from[to_v(k)] = k;
+                }
+                gather(a, from.into_iter().map(Some), None)
+            }
+        })
+        .collect();
+    let parts = mesh.parts.map(|p| crate::mesh::Parts {
+        of_triangle: permute(&p.of_triangle, to_t),
+        ..p
+    });
     Mesh {
         positions: permute(&mesh.positions, to_v),
-        triangles: permute(&renamed, |j| tris.at(j) as usize),
-        normals: mesh.normals.as_deref().map(|n| permute(n, to_v)),
-        texcoords: mesh.texcoords.as_deref().map(|t| permute(t, to_v)),
-        colors: mesh.colors.as_deref().map(|c| permute(c, to_v)),
+        triangles: permute(&renamed, to_t),
+        attributes,
+        parts,
     }
 }

@@ -2,7 +2,9 @@
 //!
 //! - [`sections`]: the header and section table, checksums (rules V1–V10);
 //! - `fields`: section-relative reads whose errors name the section, offset and rule;
-//! - `counts`: `META`, `MESH`, `GEOM`, the attributes, `COPY`, `KEPT`, `PERM`;
+//! - `counts`: `META`, `MESH`, `GEOM`, the version-1.0 attributes, `COPY`, `KEPT`, `PERM`;
+//! - [`attributes`], [`parts`]: `ATTR` (per-vertex and per-corner attributes, with their
+//!   seams) and `PART`;
 //! - `lr`, `lr_compact`, `strips`, `edgebreaker`: each connectivity section's rules, and
 //!   `lr_rules` for what every LR layout keeps;
 //! - [`view`]: the validated [`Container`], answering corner queries on the buffer;
@@ -15,6 +17,7 @@
 //! input's length: the view borrows its tables, and the per-vertex marks that validation
 //! needs are bounded by counts already checked against the bytes present.
 
+pub mod attributes;
 mod counts;
 mod decode;
 mod edgebreaker;
@@ -22,11 +25,14 @@ mod fields;
 mod lr;
 mod lr_compact;
 mod lr_rules;
+pub mod parts;
 pub mod sections;
 mod strips;
 pub mod summary;
 pub mod view;
 
+pub use attributes::AttributeView;
+pub use parts::PartsView;
 pub use sections::{Section, Sections};
 pub use summary::{ContainerSummary, SectionSummary};
 pub use view::{Connectivity, Container, Positions};

@@ -3,6 +3,7 @@
 use super::{Connectivity, Container};
 use crate::format::{Metadata, Tag, HEADER_LEN};
 use crate::lr::LrLayout;
+use crate::mesh::Semantic;
 use crate::ops::CornerOps;
 use crate::words::Words;
 
@@ -57,12 +58,46 @@ pub struct ContainerSummary {
     pub rpt: Option<f64>,
     /// Positions stored as 16-bit integers (lossy).
     pub quantized: bool,
-    /// Per-vertex attributes present: `normals`, `texcoords`, `colors`.
-    pub attributes: Vec<&'static str>,
+    /// Attributes present: `normals`, `texcoords`, `colors` (set 0), `texcoords<n>`,
+    /// `colors<n>`, or a custom attribute's name.
+    pub attributes: Vec<String>,
+    /// Each attribute in detail, in the same order.
+    pub attribute_details: Vec<AttributeSummary>,
+    /// Number of parts (objects, groups, materials), when the file has them.
+    pub parts: Option<u32>,
     /// Whether the input's vertex and triangle order is stored.
     pub keeps_order: bool,
     /// The metadata, if any.
     pub metadata: Option<Metadata>,
+}
+
+/// One attribute, for reports.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct AttributeSummary {
+    /// As in [`ContainerSummary::attributes`].
+    pub name: String,
+    /// `vertex` or `corner`.
+    pub binding: &'static str,
+    /// Component type and count, e.g. `f32x3`, `u8x4 normalized`.
+    pub format: String,
+    /// Values stored: one per container vertex, then the extra ones.
+    pub values: u32,
+    /// Values beyond one per vertex: one per extra value a seam needs.
+    pub extra_values: u32,
+    /// Triangles flagged for having a corner on an extra value.
+    pub seam_triangles: u32,
+}
+
+/// The report name of `semantic`.
+fn attribute_name(semantic: &Semantic) -> String {
+    match semantic {
+        Semantic::Normal => "normals".into(),
+        Semantic::TexCoord(0) => "texcoords".into(),
+        Semantic::Color(0) => "colors".into(),
+        Semantic::TexCoord(n) => format!("texcoords{n}"),
+        Semantic::Color(n) => format!("colors{n}"),
+        Semantic::Custom(name) => name.clone(),
+    }
 }
 
 impl Container<'_> {
@@ -104,16 +139,24 @@ impl Container<'_> {
             )),
             Connectivity::Edgebreaker(_) | Connectivity::LrCompact(_) => None,
         };
-        let mut attributes = Vec::new();
-        for (present, name) in [
-            (self.normals.is_some(), "normals"),
-            (self.texcoords.is_some(), "texcoords"),
-            (self.colors.is_some(), "colors"),
-        ] {
-            if present {
-                attributes.push(name);
-            }
-        }
+        let attribute_details: Vec<AttributeSummary> = self
+            .attributes()
+            .iter()
+            .map(|a| AttributeSummary {
+                name: attribute_name(&a.semantic),
+                binding: if a.per_corner { "corner" } else { "vertex" },
+                format: format!(
+                    "{}x{}{}",
+                    format!("{:?}", a.component_type).to_lowercase(),
+                    a.components,
+                    if a.normalized { " normalized" } else { "" }
+                ),
+                values: a.value_count(),
+                extra_values: a.extra_values(),
+                seam_triangles: a.flagged_triangles(),
+            })
+            .collect();
+        let attributes = attribute_details.iter().map(|a| a.name.clone()).collect();
         ContainerSummary {
             version: format!("{}.{}", self.sections.major, self.sections.minor),
             bytes: self
@@ -153,6 +196,8 @@ impl Container<'_> {
             rpt,
             quantized: self.is_quantized(),
             attributes,
+            attribute_details,
+            parts: self.parts().map(|p| p.labels.parts.len() as u32),
             keeps_order: self.perm.is_some(),
             metadata: self.metadata.clone(),
         }
@@ -213,12 +258,27 @@ impl std::fmt::Display for ContainerSummary {
                 "f32"
             }
         )?;
-        let attributes = if self.attributes.is_empty() {
-            "none".to_string()
-        } else {
-            self.attributes.join(", ")
-        };
-        writeln!(f, "attributes               {attributes}")?;
+        if self.attribute_details.is_empty() {
+            writeln!(f, "attributes               none")?;
+        }
+        for a in &self.attribute_details {
+            write!(
+                f,
+                "attribute                {} per {}, {}, {} values",
+                a.name, a.binding, a.format, a.values
+            )?;
+            if a.binding == "corner" {
+                write!(
+                    f,
+                    " ({} for seams, {} triangles flagged)",
+                    a.extra_values, a.seam_triangles
+                )?;
+            }
+            writeln!(f)?;
+        }
+        if let Some(parts) = self.parts {
+            writeln!(f, "parts                    {parts}")?;
+        }
         writeln!(f, "input order kept         {}", self.keeps_order)?;
         if let Some(m) = &self.metadata {
             writeln!(f, "generator                {}", m.generator)?;

@@ -2,12 +2,15 @@
 //! the corner operators in place (Edgebreaker decoded once into a corner table), the
 //! attributes read on demand, and the map back to the input's vertex ids.
 
+use super::attributes::{self, AttributeView};
+use super::parts::{self, PartsView};
 use super::{counts, edgebreaker, lr, lr_compact, strips, Limits, Sections};
 use crate::corner_table::CornerTable;
 use crate::error::{Result, Rule};
 use crate::format::{le_f32, Kind, Metadata};
 use crate::ids::{Corner, Triangle, Vertex};
 use crate::lr::{CompactTables, LrLayout, LrTables};
+use crate::mesh::{ComponentType, Semantic};
 use crate::ops::CornerOps;
 use crate::strips::CtsTables;
 use crate::words::{LeUnits, LeWords, Words};
@@ -100,14 +103,6 @@ impl Connectivity<'_> {
     pub fn triangle_count(&self) -> u64 {
         self.triangles().count() as u64
     }
-
-    /// The triangles as container vertex ids, in the order of `spec/FORMAT.md` section 4:
-    /// increasing triangle id, each as `(t.c.v, t.c.n.v, t.c.p.v)`.
-    pub(super) fn for_each_triangle(&self, mut f: impl FnMut([u32; 3])) {
-        each!(self, t => t
-            .triangles()
-            .for_each(|tri| f(t.triangle_vertices(tri).map(|v| v.0))))
-    }
 }
 
 impl CornerOps for Connectivity<'_> {
@@ -166,9 +161,8 @@ pub struct Container<'a> {
     /// Container vertices (copies included).
     pub(super) vertices: u32,
     pub(super) positions: Positions<'a>,
-    pub(super) normals: Option<&'a [u8]>,
-    pub(super) texcoords: Option<&'a [u8]>,
-    pub(super) colors: Option<&'a [u8]>,
+    pub(super) attributes: Vec<AttributeView<'a>>,
+    pub(super) parts: Option<PartsView<'a>>,
     /// `(copy, original)` pairs, copies increasing.
     pub(super) copies: LeWords<'a>,
     /// Kept-aside triangles, three vertices each.
@@ -186,7 +180,7 @@ impl<'a> Container<'a> {
         let (mesh, mesh_fields) = counts::mesh_record(&sections)?;
         let m = mesh.vertices;
         let positions = counts::positions(&sections, m)?;
-        let [normals, texcoords, colors] = counts::attributes(&sections, m)?;
+        let legacy = counts::attributes(&sections, m)?;
         let connectivity = match mesh.kind {
             Kind::LR => Connectivity::Lr(lr::lr_tables(&sections, m)?),
             Kind::STRIPS => Connectivity::Strips(strips::strips_tables(&sections, m)?),
@@ -234,15 +228,22 @@ impl<'a> Container<'a> {
         }
         let total = mesh.triangles as u64 + mesh.kept as u64;
         let perm = counts::perm(&sections, mesh.output_vertices, total)?;
+        let cx = attributes::Context {
+            vertices: m,
+            connectivity: &connectivity,
+            kept: mesh.kept,
+            copies,
+        };
+        let attributes = attributes::attributes(&sections, legacy, &cx)?;
+        let parts = parts::parts(&sections, &cx)?;
         Ok(Container {
             sections,
             metadata,
             connectivity,
             vertices: m,
             positions,
-            normals,
-            texcoords,
-            colors,
+            attributes,
+            parts,
             copies,
             kept,
             perm,
@@ -293,6 +294,18 @@ impl<'a> Container<'a> {
     /// Number of degenerate triangles kept aside.
     pub fn kept_triangle_count(&self) -> u32 {
         (self.kept.count() / 3) as u32
+    }
+
+    /// Container vertex `k` of kept-aside triangle `j`.
+    ///
+    /// # Panics
+    /// When `j` is not below [`Container::kept_triangle_count`] or `k > 2`.
+    pub fn kept_vertex(&self, j: u32, k: usize) -> Vertex {
+        assert!(
+            k < 3 && j < self.kept_triangle_count(),
+            "kept corner {j}:{k} out of range"
+        );
+        Vertex(self.kept.at(3 * j as usize + k))
     }
 
     /// Number of container vertices: those of the connectivity, copies included.
@@ -348,33 +361,50 @@ impl<'a> Container<'a> {
             .collect()
     }
 
-    /// The normal of container vertex `v`, when the file has normals.
+    /// The value of per-vertex attribute `semantic` at container vertex `v` as f32s;
+    /// `None` when the file has no such attribute or has it per corner.
+    ///
+    /// # Panics
+    /// When `v` is not below [`Container::connectivity_vertex_count`].
+    fn vertex_value(&self, semantic: &Semantic, v: Vertex) -> Option<[f32; 4]> {
+        self.check_vertex(v);
+        self.attribute(semantic)
+            .filter(|a| !a.per_corner)
+            .map(|a| a.value_f32(v.0))
+    }
+
+    /// The normal of container vertex `v`, when the file has normals per vertex.
     ///
     /// # Panics
     /// When `v` is not below [`Container::connectivity_vertex_count`].
     pub fn normal(&self, v: Vertex) -> Option<[f32; 3]> {
-        let i = self.check_vertex(v);
-        self.normals
-            .map(|b| [0, 1, 2].map(|k| le_f32(b, 12 * i + 4 * k)))
+        self.vertex_value(&Semantic::Normal, v)
+            .map(|x| [x[0], x[1], x[2]])
     }
 
-    /// The texture coordinates of container vertex `v`, when the file has them.
+    /// The texture coordinates (set 0) of container vertex `v`, when the file has them
+    /// per vertex.
     ///
     /// # Panics
     /// When `v` is not below [`Container::connectivity_vertex_count`].
     pub fn texcoord(&self, v: Vertex) -> Option<[f32; 2]> {
-        let i = self.check_vertex(v);
-        self.texcoords
-            .map(|b| [0, 1].map(|k| le_f32(b, 8 * i + 4 * k)))
+        self.vertex_value(&Semantic::TexCoord(0), v)
+            .map(|x| [x[0], x[1]])
     }
 
-    /// The RGBA color of container vertex `v`, when the file has colors.
+    /// The RGBA color (set 0) of container vertex `v` as bytes, when the file has RGBA
+    /// bytes per vertex.
     ///
     /// # Panics
     /// When `v` is not below [`Container::connectivity_vertex_count`].
     pub fn color(&self, v: Vertex) -> Option<[u8; 4]> {
-        let i = self.check_vertex(v);
-        self.colors.map(|b| [0, 1, 2, 3].map(|k| b[4 * i + k]))
+        self.check_vertex(v);
+        let a = self.attribute(&Semantic::Color(0))?;
+        if a.per_corner || a.component_type != ComponentType::U8 || a.components != 4 {
+            return None;
+        }
+        let b = a.value_bytes(v.0);
+        Some([b[0], b[1], b[2], b[3]])
     }
 
     /// The vertex of the decoded mesh ([`Container::to_mesh`]) that container vertex `v`

@@ -20,6 +20,34 @@ pub(super) struct Encoded {
     pub input_vertex: Vec<u32>,
     /// The connectivity's triangles, in its order -> input triangle.
     pub input_triangle: Vec<u32>,
+    /// The triangles as the container reads them: ids, vertices, and the id bound.
+    pub shape: Shape,
+}
+
+/// The connectivity's triangles as a reader sees them (FORMAT.md §4): for each, in order, its
+/// triangle id and its container vertices `(t.c.v, t.c.n.v, t.c.p.v)`. The attribute and
+/// part sections are indexed by these ids and corners.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Shape {
+    /// One past the largest triangle id (`S` before the kept triangles).
+    pub id_bound: u32,
+    /// Triangle id of each triangle, in order.
+    pub ids: Vec<u32>,
+    /// Container vertices of each triangle's corners, in order.
+    pub corners: Vec<[u32; 3]>,
+}
+
+impl Shape {
+    fn of(ops: &impl CornerOps) -> Shape {
+        Shape {
+            id_bound: ops.triangle_id_bound(),
+            ids: ops.triangles().map(|t| t.0).collect(),
+            corners: ops
+                .triangles()
+                .map(|t| ops.triangle_vertices(t).map(|v| v.0))
+                .collect(),
+        }
+    }
 }
 
 /// Appends each array in layout order, checking that its length is the one the header's
@@ -84,6 +112,7 @@ pub(super) fn lr_section(lr: &Lr) -> Encoded {
             .map(|v| lr.input_vertex(Vertex(v)))
             .collect(),
         input_triangle: lr.triangles().map(|t| lr.input_triangle(t)).collect(),
+        shape: Shape::of(lr),
     }
 }
 
@@ -116,6 +145,7 @@ pub(super) fn lr_compact_section(lr: &CompactLr) -> Encoded {
             .map(|v| lr.input_vertex(Vertex(v)))
             .collect(),
         input_triangle: t.triangles().map(|tri| lr.input_triangle(tri)).collect(),
+        shape: Shape::of(t),
     }
 }
 
@@ -134,9 +164,27 @@ pub(crate) fn lr_compact_header(lr: &CompactLr) -> LrbeHeader {
     }
 }
 
-/// The `EBRK` section of a corner table.
-pub(super) fn edgebreaker_section(table: &CornerTable) -> Result<Encoded> {
+/// The `EBRK` section of a corner table; with `shape`, the triangles as a reader decodes
+/// them (the stream is decoded again: only the decoder fixes each triangle's first corner).
+pub(super) fn edgebreaker_section(table: &CornerTable, shape: bool) -> Result<Encoded> {
     let encoded = edgebreaker::encode(table)?;
+    let shape = if shape {
+        let unbounded = edgebreaker::Limits {
+            max_triangles: u64::MAX,
+            max_vertices: u64::MAX,
+        };
+        let decoded = edgebreaker::decode(&encoded.bytes, &unbounded)?;
+        Shape::of(&CornerTable::build(
+            decoded.vertex_count as usize,
+            &decoded.triangles,
+        )?)
+    } else {
+        Shape {
+            id_bound: encoded.triangle_order.len() as u32,
+            ids: (0..encoded.triangle_order.len() as u32).collect(),
+            corners: Vec::new(),
+        }
+    };
     Ok(Encoded {
         kind: Kind::EDGEBREAKER,
         tag: Tag::EBRK,
@@ -151,6 +199,7 @@ pub(super) fn edgebreaker_section(table: &CornerTable) -> Result<Encoded> {
             .iter()
             .map(|&t| table.input_triangle(Triangle(t)))
             .collect(),
+        shape,
     })
 }
 
@@ -170,5 +219,6 @@ pub(super) fn strips_section(cts: &Cts) -> Encoded {
         payload: p,
         input_vertex: cts.vertices().map(|v| cts.input_vertex(v)).collect(),
         input_triangle: cts.triangles().map(|t| cts.input_triangle(t)).collect(),
+        shape: Shape::of(cts),
     }
 }

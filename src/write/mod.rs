@@ -5,6 +5,7 @@
 //! feature changes them.
 
 mod assemble;
+mod attributes;
 mod connectivity;
 
 pub use assemble::{assemble, write_sections, SectionBytes};
@@ -127,14 +128,14 @@ pub fn encode_built(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Resul
 }
 
 /// The connectivity section of `built`.
-fn connectivity(built: Built, options: &EncodeOptions) -> Result<Encoded> {
+fn connectivity(built: Built, options: &EncodeOptions, shape: bool) -> Result<Encoded> {
     Ok(match built {
         Built::Lr(lr) => connectivity::lr_section(lr),
         Built::LrCompact(lr) => connectivity::lr_compact_section(lr),
         Built::Strips(cts) => connectivity::strips_section(cts),
         Built::Table(table) => match options.connectivity {
             Connectivity::Lr => connectivity::lr_section(&Lr::build(table, &options.lr)?),
-            Connectivity::Edgebreaker => connectivity::edgebreaker_section(table)?,
+            Connectivity::Edgebreaker => connectivity::edgebreaker_section(table, shape)?,
             Connectivity::Strips => {
                 connectivity::strips_section(&Cts::build(table, &options.strips)?)
             }
@@ -157,7 +158,9 @@ fn sections(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<Se
         Built::LrCompact(lr) => lr.kept_aside(),
         Built::Strips(cts) => cts.kept_aside(),
     };
-    let encoded = connectivity(built, options)?;
+    // Per-corner attributes and parts need the triangles as a reader numbers them.
+    let shape = mesh.has_per_corner_attributes() || mesh.parts.is_some();
+    let encoded = connectivity(built, options, shape)?;
     let m = encoded.input_vertex.len() as u32;
     let per_vertex = |v: u32| encoded.input_vertex[v as usize] as usize;
     let triangle_total = encoded.input_triangle.len() + kept.len();
@@ -208,20 +211,15 @@ fn sections(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<Se
         positions(mesh, m, &per_vertex, options.quantize16),
     ));
 
-    let floats = |values: &mut dyn Iterator<Item = f32>| -> Vec<u8> {
-        values.flat_map(f32::to_le_bytes).collect()
-    };
-    if let Some(normals) = &mesh.normals {
-        let bytes = floats(&mut (0..m).flat_map(|v| normals[per_vertex(v)]));
-        sections.push((Tag::NORM, Flags::NONE, bytes));
-    }
-    if let Some(texcoords) = &mesh.texcoords {
-        let bytes = floats(&mut (0..m).flat_map(|v| texcoords[per_vertex(v)]));
-        sections.push((Tag::TEXC, Flags::NONE, bytes));
-    }
-    if let Some(colors) = &mesh.colors {
-        let bytes = (0..m).flat_map(|v| colors[per_vertex(v)]).collect();
-        sections.push((Tag::COLR, Flags::NONE, bytes));
+    if !mesh.attributes.is_empty() || mesh.parts.is_some() {
+        let corners = attributes::Corners::new(mesh, &encoded, kept, &primary)?;
+        if !mesh.attributes.is_empty() {
+            let payload = attributes::attr_section(mesh, &corners, &encoded.input_vertex)?;
+            sections.push((Tag::ATTR, Flags::NONE, payload));
+        }
+        if let Some(payload) = attributes::part_section(mesh, &corners)? {
+            sections.push((Tag::PART, Flags::NONE, payload));
+        }
     }
 
     sections.push((encoded.tag, Flags::REQUIRED, encoded.payload));

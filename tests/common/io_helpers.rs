@@ -2,6 +2,7 @@
 
 use super::corpus_dir;
 use lrmesh::io::{read_mesh, read_mesh_bytes, stl, write_mesh_to, Loaded, MeshFormat, ReadOptions};
+use lrmesh::mesh::{Attribute, Semantic};
 use lrmesh::{Error, Location, Mesh, ParseError};
 use std::path::Path;
 
@@ -73,35 +74,40 @@ pub fn stl_ascii(mesh: &Mesh) -> Vec<u8> {
     out
 }
 
+/// `m` with its attributes in the order of their semantics, for comparing two meshes whole:
+/// the order of `Mesh::attributes` means nothing, and each reader keeps its format's order.
+pub fn sorted_attributes(m: &Mesh) -> Mesh {
+    let mut m = m.clone();
+    m.attributes.sort_by(|a, b| a.semantic.cmp(&b.semantic));
+    m
+}
+
 pub fn with_attributes(mut m: Mesh, normals: bool, texcoords: bool, colors: bool) -> Mesh {
     let n = m.vertex_count();
     if normals {
-        m.normals = Some(
-            (0..n)
-                .map(|i| match i % 3 {
-                    0 => [-0.0, 0.0, 1.0],
-                    1 => [0.577_350_26, -0.577_350_26, 1e-42],
-                    _ => [i as f32, -1e30, 0.25],
-                })
-                .collect(),
-        );
+        let normals: Vec<[f32; 3]> = (0..n)
+            .map(|i| match i % 3 {
+                0 => [-0.0, 0.0, 1.0],
+                1 => [0.577_350_26, -0.577_350_26, 1e-42],
+                _ => [i as f32, -1e30, 0.25],
+            })
+            .collect();
+        m.set_attribute(Attribute::per_vertex(Semantic::Normal, &normals));
     }
     if texcoords {
-        m.texcoords = Some(
-            (0..n)
-                .map(|i| [i as f32 / 7.0, if i == 2 { -0.0 } else { 1e-20 }])
-                .collect(),
-        );
+        let texcoords: Vec<[f32; 2]> = (0..n)
+            .map(|i| [i as f32 / 7.0, if i == 2 { -0.0 } else { 1e-20 }])
+            .collect();
+        m.set_attribute(Attribute::per_vertex(Semantic::TexCoord(0), &texcoords));
     }
     if colors {
-        m.colors = Some(
-            (0..n)
-                .map(|i| {
-                    let i = i as u8;
-                    [i * 40, 255 - i, 1, if i == 3 { 0 } else { 255 }]
-                })
-                .collect(),
-        );
+        let colors: Vec<[u8; 4]> = (0..n)
+            .map(|i| {
+                let i = i as u8;
+                [i * 40, 255 - i, 1, if i == 3 { 0 } else { 255 }]
+            })
+            .collect();
+        m.set_attribute(Attribute::rgba8(&colors));
     }
     m
 }

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use lrmesh::io::{self, ReadOptions};
+use lrmesh::io::{self, MeshFormat, ReadOptions};
 use lrmesh::{Error, Mesh};
 
 use crate::progress;
@@ -61,4 +61,68 @@ pub fn load(path: &Path, weld: bool) -> lrmesh::Result<Mesh> {
         eprintln!("warning: {}: {warning}", path.display());
     }
     Ok(loaded.mesh)
+}
+
+/// Writes a mesh file in the format of its extension (STL binary unless `ascii`), first
+/// warning on stderr about what the format cannot keep.
+pub fn save(path: &Path, mesh: &Mesh, ascii: bool) -> lrmesh::Result<()> {
+    let format = MeshFormat::from_path(path)?;
+    if ascii && format != MeshFormat::Stl {
+        return Err(Error::InvalidArgument(format!(
+            "--ascii applies to STL output only, not to {}",
+            path.display()
+        )));
+    }
+    for loss in losses(mesh, format) {
+        eprintln!("warning: {}: {loss}", path.display());
+    }
+    progress::step("writing", || {
+        if !ascii {
+            return io::write_mesh(path, mesh);
+        }
+        mesh.validate()?;
+        let io_error = |source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        };
+        let file = std::fs::File::create(path).map_err(io_error)?;
+        io::stl::write_ascii(file, mesh).map_err(io_error)
+    })
+}
+
+/// What writing `mesh` as `format` loses, in words (nothing for the formats that keep all).
+fn losses(mesh: &Mesh, format: MeshFormat) -> Vec<String> {
+    let mut out = Vec::new();
+    let libraries = mesh
+        .parts
+        .as_ref()
+        .map_or(0, |p| p.material_libraries.len());
+    match format {
+        MeshFormat::Stl => {
+            if !mesh.attributes.is_empty() {
+                let names: Vec<String> = mesh
+                    .attributes
+                    .iter()
+                    .map(|a| a.semantic.to_string())
+                    .collect();
+                out.push(format!(
+                    "STL keeps positions only: the attributes {} are dropped",
+                    names.join(", ")
+                ));
+            }
+            if let Some(parts) = &mesh.parts {
+                let n = parts.parts.len();
+                out.push(format!(
+                    "STL has no objects, groups or materials: the mesh's {n} part{} dropped",
+                    if n == 1 { " is" } else { "s are" }
+                ));
+            }
+        }
+        MeshFormat::Gltf | MeshFormat::Glb if libraries > 0 => out.push(format!(
+            "glTF has no material libraries: {libraries} mtllib references are dropped \
+             (material names are kept)"
+        )),
+        _ => {}
+    }
+    out
 }

@@ -2,26 +2,27 @@
 
 use std::path::PathBuf;
 
-use lrmesh::io;
-
-use crate::common::load;
-use crate::progress;
+use crate::common::{load, save};
 
 /// Convert a mesh between formats, chosen by the file extensions.
 #[derive(clap::Args)]
 pub struct Args {
-    /// The input mesh (.obj, .off, .ply, .stl).
+    /// The input mesh (.obj, .off, .ply, .stl, .gltf, .glb).
     input: PathBuf,
-    /// The output mesh (.obj, .off, .ply).
+    /// The output mesh (.obj, .off, .ply, .stl, .gltf, .glb).
     output: PathBuf,
-    /// STL input only: merge corners with identical positions into shared vertices.
+    /// STL and glTF input: merge vertices with identical positions into shared vertices
+    /// (glTF: attributes that differ at a seam become per corner).
     #[arg(long)]
     weld: bool,
+    /// STL output: ASCII instead of binary.
+    #[arg(long)]
+    ascii: bool,
 }
 
 pub fn run(args: Args) -> lrmesh::Result<()> {
     let mesh = load(&args.input, args.weld)?;
-    progress::step("writing", || io::write_mesh(&args.output, &mesh))?;
+    save(&args.output, &mesh, args.ascii)?;
     eprintln!(
         "wrote {}: {} vertices, {} triangles",
         args.output.display(),

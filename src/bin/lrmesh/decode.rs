@@ -2,10 +2,9 @@
 
 use std::path::PathBuf;
 
-use lrmesh::io;
 use lrmesh::read::{self, Limits};
 
-use crate::common::{map, say};
+use crate::common::{map, save, say};
 use crate::progress;
 
 /// Decode an .lrm container into a mesh file.
@@ -13,9 +12,12 @@ use crate::progress;
 pub struct DecodeArgs {
     /// The container.
     input: PathBuf,
-    /// The mesh to write (.obj, .off, .ply).
+    /// The mesh to write (.obj, .off, .ply, .stl, .gltf, .glb).
     #[arg(short, long)]
     output: PathBuf,
+    /// STL output: ASCII instead of binary.
+    #[arg(long)]
+    ascii: bool,
 }
 
 /// Validate an .lrm container fully: exit 0 only when it is valid.
@@ -29,7 +31,7 @@ pub fn decode(args: DecodeArgs) -> lrmesh::Result<()> {
     let bytes = map(&args.input)?;
     let view = read::open(&bytes, &Limits::default()).map_err(|e| e.with_file(&args.input))?;
     let mesh = progress::step("decoding", || view.to_mesh());
-    progress::step("writing", || io::write_mesh(&args.output, &mesh))?;
+    save(&args.output, &mesh, args.ascii)?;
     eprintln!(
         "wrote {}: {} vertices, {} triangles{}",
         args.output.display(),

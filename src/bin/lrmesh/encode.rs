@@ -40,7 +40,8 @@ pub struct Args {
     /// instead of trying several and keeping the smallest.
     #[arg(long)]
     period: Option<u32>,
-    /// STL input only: merge corners with identical positions into shared vertices.
+    /// STL and glTF input: merge vertices with identical positions into shared vertices
+    /// (glTF: attributes that differ at a seam become per corner).
     #[arg(long)]
     weld: bool,
 }

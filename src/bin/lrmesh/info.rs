@@ -16,7 +16,8 @@ pub struct Args {
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
-    /// STL only: merge corners with identical positions into shared vertices.
+    /// STL and glTF input: merge vertices with identical positions into shared vertices
+    /// (glTF: attributes that differ at a seam become per corner).
     #[arg(long)]
     weld: bool,
 }

@@ -48,7 +48,8 @@ pub struct Args {
     /// Seed for the choice of seed corners (mesh input only).
     #[arg(long, default_value_t = LrOptions::default().seed)]
     seed: u64,
-    /// STL input only: merge corners with identical positions into shared vertices.
+    /// STL and glTF input: merge vertices with identical positions into shared vertices
+    /// (glTF: attributes that differ at a seam become per corner).
     #[arg(long)]
     weld: bool,
 }

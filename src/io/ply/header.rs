@@ -28,6 +28,9 @@ pub(super) fn parse_header(bytes: &[u8]) -> Result<Header> {
     // Names seen so far, so that a header of many statements stays linear.
     let mut element_names: HashSet<String> = HashSet::new();
     let mut property_names: HashSet<(usize, String)> = HashSet::new();
+    // Lines with no known keyword: how many, and the first with its number.
+    let mut unknown: Option<(u64, String)> = None;
+    let mut unknown_count = 0u64;
     loop {
         let Some((n, line)) = lines.next_line() else {
             return Err(header_err(
@@ -80,7 +83,10 @@ pub(super) fn parse_header(bytes: &[u8]) -> Result<Header> {
                     lex::parse_count(count, "element count").map_err(|m| header_err(n, m))?;
                 let name = String::from_utf8_lossy(name).into_owned();
                 if !element_names.insert(name.clone()) {
-                    return Err(header_err(n, format!("a second element `{name}`")));
+                    return Err(header_err(
+                        n,
+                        format!("a second element `{}`", lex::show(name.as_bytes())),
+                    ));
                 }
                 elements.push(Element {
                     name,
@@ -129,7 +135,11 @@ pub(super) fn parse_header(bytes: &[u8]) -> Result<Header> {
                 if !property_names.insert((element_index, name.clone())) {
                     return Err(header_err(
                         n,
-                        format!("a second property `{name}` in element `{}`", element.name),
+                        format!(
+                            "a second property `{}` in element `{}`",
+                            lex::show(name.as_bytes()),
+                            lex::show(element.name.as_bytes())
+                        ),
                     ));
                 }
                 element.props.push(Property {
@@ -139,22 +149,34 @@ pub(super) fn parse_header(bytes: &[u8]) -> Result<Header> {
                 });
             }
             b"end_header" => break,
-            other => {
-                return Err(header_err(
-                    n,
-                    format!("unknown header statement `{}`", lex::show(other)),
-                ))
+            _ => {
+                // Free text without the `comment` keyword, as Blender 2.4 wrote
+                // (`Created by Blender3D 247 - www.blender.org, source file: ...`).
+                if unknown.is_none() {
+                    unknown = Some((n, lex::show_at_most(line.trim_ascii(), 100)));
+                }
+                unknown_count += 1;
             }
         }
     }
     let Some(encoding) = encoding else {
         return Err(header_err(1, "the header has no `format` line"));
     };
+    let warnings = unknown
+        .map(|(line, text)| {
+            format!(
+                "skipped {unknown_count} header line(s) with no known keyword, the first on \
+                 line {line}: `{text}`"
+            )
+        })
+        .into_iter()
+        .collect();
     Ok(Header {
         encoding,
         elements,
         body: lines.offset(),
         body_line: lines.next_number(),
+        warnings,
     })
 }
 
@@ -290,10 +312,18 @@ pub(super) fn assign_roles(elements: &mut [Element]) -> Result<(Layout, Option<S
     for e in elements.iter() {
         if e.name == "vertex" || e.name == "face" {
             for p in e.props.iter().filter(|p| p.role == Role::Skip) {
-                skipped.push(format!("property `{}.{}`", e.name, p.name));
+                skipped.push(format!(
+                    "property `{}.{}`",
+                    e.name,
+                    lex::show(p.name.as_bytes())
+                ));
             }
         } else {
-            skipped.push(format!("element `{}` ({} records)", e.name, e.count));
+            skipped.push(format!(
+                "element `{}` ({} records)",
+                lex::show(e.name.as_bytes()),
+                e.count
+            ));
         }
     }
     let warning = (!skipped.is_empty()).then(|| {

@@ -1,7 +1,9 @@
 //! PLY (Polygon File Format) reading and writing.
 //!
 //! The reader takes `format ascii 1.0`, `binary_little_endian 1.0` and `binary_big_endian 1.0`,
-//! `comment` and `obj_info` lines, and any elements with any scalar or list properties of the
+//! `comment` and `obj_info` lines (a header line with no known keyword, such as Blender 2.4's
+//! `Created by Blender3D 247 ...`, is skipped with a warning that quotes it), a UTF-8
+//! byte-order mark before `ply`, and any elements with any scalar or list properties of the
 //! types `char`/`int8`, `uchar`/`uint8`, `short`/`int16`, `ushort`/`uint16`, `int`/`int32`,
 //! `uint`/`uint32`, `float`/`float32`, `double`/`float64`, in any order.
 //!
@@ -147,6 +149,8 @@ struct Header {
     body: usize,
     /// Line on which the body starts (for ASCII).
     body_line: u64,
+    /// What the header parser skipped (lines with no known keyword).
+    warnings: Vec<String>,
 }
 
 /// Which mesh data the file provides.
@@ -167,6 +171,7 @@ struct Layout {
 pub fn read(bytes: &[u8], _opts: &ReadOptions) -> Result<Loaded> {
     let mut header = header::parse_header(bytes)?;
     let (layout, skipped) = header::assign_roles(&mut header.elements)?;
-    let mut warnings: Vec<String> = skipped.into_iter().collect();
+    let mut warnings = std::mem::take(&mut header.warnings);
+    warnings.extend(skipped);
     read::body(bytes, &header, &layout, &mut warnings).map(|mesh| Loaded { mesh, warnings })
 }

@@ -237,7 +237,8 @@ fn read_body<S: Source>(
                         loc,
                         format!(
                             "element `{}` record {r}, property `{}`: {m}",
-                            e.name, p.name
+                            lex::show(e.name.as_bytes()),
+                            lex::show(p.name.as_bytes())
                         ),
                     )
                 };
@@ -298,7 +299,14 @@ fn read_body<S: Source>(
                         for _ in 0..n {
                             let loc = src.location();
                             let ierr = |m: String| {
-                                perr(FORMAT, loc, format!("element `{}` record {r}: {m}", e.name))
+                                perr(
+                                    FORMAT,
+                                    loc,
+                                    format!(
+                                        "element `{}` record {r}: {m}",
+                                        lex::show(e.name.as_bytes())
+                                    ),
+                                )
                             };
                             let v = src.scalar(item).map_err(ierr)?;
                             if v < 0.0 {
@@ -337,13 +345,13 @@ fn read_body<S: Source>(
             "{clamped} color components outside their range were clamped"
         ));
     }
-    Ok(Mesh {
+    Ok(crate::io::vertex_mesh(
         positions,
         triangles,
-        normals: layout.normals.then_some(normals),
-        texcoords: layout.texcoords.then_some(texcoords),
-        colors: layout.colors.then_some(colors),
-    })
+        layout.normals.then_some(normals),
+        layout.texcoords.then_some(texcoords),
+        layout.colors.then_some(colors),
+    ))
 }
 
 /// Checks that the body can hold every declared record before anything is reserved: each
@@ -376,7 +384,7 @@ fn check_counts<S: Source>(header: &Header, body_len: u64, at: Location) -> Resu
         let declared: Vec<String> = header
             .elements
             .iter()
-            .map(|e| format!("{} `{}`", e.count, e.name))
+            .map(|e| format!("{} `{}`", e.count, lex::show(e.name.as_bytes())))
             .collect();
         return Err(perr(
             FORMAT,

@@ -4,7 +4,7 @@
 use std::io::{BufWriter, Write};
 
 use crate::io::check_writable;
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Semantic};
 
 /// Writes a binary little-endian PLY file (see the module documentation for the layout).
 ///
@@ -14,6 +14,10 @@ use crate::mesh::Mesh;
 pub fn write<W: Write>(w: W, mesh: &Mesh) -> std::io::Result<()> {
     check_writable(mesh)?;
     let mut w = BufWriter::new(w);
+    let mesh = &mesh.split_seams();
+    let normals = mesh.vertex_values::<3>(&Semantic::Normal);
+    let texcoords = mesh.vertex_values::<2>(&Semantic::TexCoord(0));
+    let colors = mesh.vertex_colors_rgba8();
     writeln!(w, "ply")?;
     writeln!(w, "format binary_little_endian 1.0")?;
     writeln!(w, "comment written by lrmesh")?;
@@ -21,17 +25,17 @@ pub fn write<W: Write>(w: W, mesh: &Mesh) -> std::io::Result<()> {
     for p in ["x", "y", "z"] {
         writeln!(w, "property float {p}")?;
     }
-    if mesh.normals.is_some() {
+    if normals.is_some() {
         for p in ["nx", "ny", "nz"] {
             writeln!(w, "property float {p}")?;
         }
     }
-    if mesh.texcoords.is_some() {
+    if texcoords.is_some() {
         for p in ["s", "t"] {
             writeln!(w, "property float {p}")?;
         }
     }
-    if mesh.colors.is_some() {
+    if colors.is_some() {
         for p in ["red", "green", "blue", "alpha"] {
             writeln!(w, "property uchar {p}")?;
         }
@@ -43,17 +47,17 @@ pub fn write<W: Write>(w: W, mesh: &Mesh) -> std::io::Result<()> {
         for x in p {
             w.write_all(&x.to_le_bytes())?;
         }
-        if let Some(n) = &mesh.normals {
+        if let Some(n) = &normals {
             for x in n[i] {
                 w.write_all(&x.to_le_bytes())?;
             }
         }
-        if let Some(t) = &mesh.texcoords {
+        if let Some(t) = &texcoords {
             for x in t[i] {
                 w.write_all(&x.to_le_bytes())?;
             }
         }
-        if let Some(c) = &mesh.colors {
+        if let Some(c) = &colors {
             w.write_all(&c[i])?;
         }
     }

@@ -1,0 +1,255 @@
+//! The `ATTR` section's records (FORMAT.md §3.9): one per attribute, a 32-byte header, the
+//! name, the values, then the seam tables that say which corners do not take their vertex's
+//! value. Shared by the writer and the reader, and answering "which value at this corner"
+//! from owned tables or from the file's bytes alike.
+
+use super::le_u32;
+use crate::mesh::{ComponentType, Semantic};
+use crate::words::Words;
+
+/// Bytes of a record's header.
+pub const RECORD_HEADER_LEN: usize = 32;
+/// Triangles per word of the `RANK` directory: one u32 per 8 words of `FLAGS`.
+pub const RANK_SPAN: u32 = 256;
+/// Flag bit: integer components stand for fractions (glTF's `normalized`).
+pub const NORMALIZED: u8 = 1;
+/// Flag bit: the attribute is per corner (otherwise per vertex, with no seams).
+pub const PER_CORNER: u8 = 2;
+
+/// A record's header, as stored.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct AttributeHeader {
+    /// 0 custom, 1 normal, 2 texture coordinates, 3 color.
+    pub semantic: u8,
+    /// The set `n` of `TEXCOORD_n` and `COLOR_n`; 0 otherwise.
+    pub set: u8,
+    /// [`ComponentType`] code.
+    pub component_type: u8,
+    /// Components per value, 1 to 4.
+    pub components: u8,
+    /// [`NORMALIZED`] and [`PER_CORNER`].
+    pub flags: u8,
+    /// Bits per entry of `ENTRIES` (`b`): 0 when no triangle is flagged.
+    pub entry_bits: u8,
+    /// Bytes of the UTF-8 name (custom attributes only).
+    pub name_len: u16,
+    /// Extra values beyond the vertices' own (`E`).
+    pub extra: u32,
+    /// Flagged triangles (`F`).
+    pub flagged: u32,
+    /// Triangle slots covered (`S`): the connectivity's triangle ids, then the kept ones.
+    pub slots: u32,
+    /// Reserved, 0.
+    pub reserved: [u32; 3],
+}
+
+/// Where a record's parts lie, in bytes from the record's start.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RecordLayout {
+    /// The name.
+    pub name: std::ops::Range<usize>,
+    /// `V + E` values.
+    pub values: std::ops::Range<usize>,
+    /// `FLAGS`: one bit per slot, `⌈S/32⌉` words, when `F > 0`.
+    pub flags: std::ops::Range<usize>,
+    /// `RANK`: flagged slots before each span of 256, `⌈S/256⌉` words, when `F > 0`.
+    pub rank: std::ops::Range<usize>,
+    /// `ENTRIES`: `3F` entries of `b` bits, in `⌈3F·b/32⌉` words.
+    pub entries: std::ops::Range<usize>,
+}
+
+impl RecordLayout {
+    /// The record's length.
+    pub fn len(&self) -> usize {
+        self.entries.end
+    }
+
+    /// Whether the record is empty (never: the header alone is 32 bytes).
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+}
+
+impl AttributeHeader {
+    /// The header at the start of `bytes` (at least [`RECORD_HEADER_LEN`] long).
+    pub fn parse(bytes: &[u8]) -> AttributeHeader {
+        AttributeHeader {
+            semantic: bytes[0],
+            set: bytes[1],
+            component_type: bytes[2],
+            components: bytes[3],
+            flags: bytes[4],
+            entry_bits: bytes[5],
+            name_len: u16::from_le_bytes([bytes[6], bytes[7]]),
+            extra: le_u32(bytes, 8),
+            flagged: le_u32(bytes, 12),
+            slots: le_u32(bytes, 16),
+            reserved: [le_u32(bytes, 20), le_u32(bytes, 24), le_u32(bytes, 28)],
+        }
+    }
+
+    /// The 32 bytes of the header.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut out = vec![
+            self.semantic,
+            self.set,
+            self.component_type,
+            self.components,
+            self.flags,
+            self.entry_bits,
+        ];
+        out.extend_from_slice(&self.name_len.to_le_bytes());
+        for x in [self.extra, self.flagged, self.slots]
+            .into_iter()
+            .chain(self.reserved)
+        {
+            out.extend_from_slice(&x.to_le_bytes());
+        }
+        out
+    }
+
+    /// The semantic the codes stand for (`name` for a custom attribute); `None` for an
+    /// unknown code.
+    pub fn semantic(&self, name: &str) -> Option<Semantic> {
+        match self.semantic {
+            0 => Some(Semantic::Custom(name.to_string())),
+            1 => Some(Semantic::Normal),
+            2 => Some(Semantic::TexCoord(self.set)),
+            3 => Some(Semantic::Color(self.set)),
+            _ => None,
+        }
+    }
+
+    /// Semantic code and set of `semantic`.
+    pub fn codes(semantic: &Semantic) -> (u8, u8) {
+        match semantic {
+            Semantic::Custom(_) => (0, 0),
+            Semantic::Normal => (1, 0),
+            Semantic::TexCoord(n) => (2, *n),
+            Semantic::Color(n) => (3, *n),
+        }
+    }
+
+    /// The layout of the record for `vertices` container vertices; `None` for an unknown
+    /// component type or sizes beyond the address space.
+    pub fn layout(&self, vertices: u32) -> Option<RecordLayout> {
+        let size = ComponentType::from_code(self.component_type)?.size() as u64;
+        let name_end = RECORD_HEADER_LEN as u64 + u64::from(self.name_len);
+        let values = (u64::from(vertices) + u64::from(self.extra))
+            .checked_mul(u64::from(self.components) * size)?;
+        let values_end = name_end + values;
+        let (flags, rank, entries) = if self.flagged == 0 {
+            (0, 0, 0)
+        } else {
+            let s = u64::from(self.slots);
+            let bits = 3 * u64::from(self.flagged) * u64::from(self.entry_bits);
+            (
+                4 * s.div_ceil(32),
+                4 * s.div_ceil(256),
+                4 * bits.div_ceil(32),
+            )
+        };
+        let flags_end = values_end + flags;
+        let rank_end = flags_end + rank;
+        let entries_end = rank_end + entries;
+        let at = |x: u64| usize::try_from(x).ok();
+        Some(RecordLayout {
+            name: RECORD_HEADER_LEN..at(name_end)?,
+            values: at(name_end)?..at(values_end)?,
+            flags: at(values_end)?..at(flags_end)?,
+            rank: at(flags_end)?..at(rank_end)?,
+            entries: at(rank_end)?..at(entries_end)?,
+        })
+    }
+}
+
+/// The seam tables of one attribute: which slots are flagged, and the entries of the
+/// flagged ones. Answers in constant time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Seams<W> {
+    /// `FLAGS`.
+    pub flags: W,
+    /// `RANK`.
+    pub rank: W,
+    /// `ENTRIES`.
+    pub entries: W,
+    /// Bits per entry.
+    pub bits: u32,
+}
+
+impl<W: Words> Seams<W> {
+    /// Whether slot `t` is flagged.
+    #[inline]
+    pub fn is_flagged(&self, t: u32) -> bool {
+        self.flags.count() > 0 && self.flags.at(t as usize / 32) >> (t % 32) & 1 == 1
+    }
+
+    /// Flagged slots before slot `t`.
+    #[inline]
+    pub fn rank(&self, t: u32) -> u32 {
+        let word = t as usize / 32;
+        let span = t / RANK_SPAN;
+        let mut r = self.rank.at(span as usize);
+        for w in (span as usize * 8)..word {
+            r += self.flags.at(w).count_ones();
+        }
+        r + (self.flags.at(word) & ((1u32 << (t % 32)) - 1)).count_ones()
+    }
+
+    /// Entry `j` of `ENTRIES`.
+    #[inline]
+    pub fn entry(&self, j: u32) -> u32 {
+        packed(&self.entries, j, self.bits)
+    }
+
+    /// The value index at corner `k` of slot `t`, whose vertex is `v`, among `vertices`
+    /// container vertices: `v` unless the slot is flagged and its entry `e` is not 0, then
+    /// `vertices + e − 1`.
+    #[inline]
+    pub fn value_index(&self, t: u32, k: usize, v: u32, vertices: u32) -> u32 {
+        if !self.is_flagged(t) {
+            return v;
+        }
+        match self.entry(3 * self.rank(t) + k as u32) {
+            0 => v,
+            e => vertices + e - 1,
+        }
+    }
+}
+
+/// Field `j` of `bits` bits (1 to 32) packed in little-endian words: bits `j·bits ..
+/// j·bits + bits` of the stream where bit `i` is bit `i mod 32` of word `⌊i/32⌋`.
+#[inline]
+pub fn packed<W: Words>(words: &W, j: u32, bits: u32) -> u32 {
+    let bit = u64::from(j) * u64::from(bits);
+    let word = (bit / 32) as usize;
+    let shift = bit % 32;
+    let lo = u64::from(words.at(word));
+    let hi = if shift + u64::from(bits) > 32 {
+        u64::from(words.at(word + 1))
+    } else {
+        0
+    };
+    (((hi << 32 | lo) >> shift) & ((1u64 << bits) - 1)) as u32
+}
+
+/// Packs `fields` of `bits` bits each (1 to 32) as [`packed`] reads them.
+pub fn pack(fields: &[u32], bits: u32) -> Vec<u32> {
+    let total = fields.len() as u64 * u64::from(bits);
+    let mut words = vec![0u32; total.div_ceil(32) as usize];
+    for (j, &x) in fields.iter().enumerate() {
+        let bit = j as u64 * u64::from(bits);
+        let (word, shift) = ((bit / 32) as usize, bit % 32);
+        let wide = u64::from(x) << shift;
+        words[word] |= wide as u32;
+        if shift + u64::from(bits) > 32 {
+            words[word + 1] |= (wide >> 32) as u32;
+        }
+    }
+    words
+}
+
+/// Bits needed to store every number up to `max` (0 for `max = 0`).
+pub fn bits_for(max: u32) -> u32 {
+    32 - max.leading_zeros()
+}

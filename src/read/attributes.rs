@@ -1,0 +1,495 @@
+//! The `ATTR` section (rules V40–V42) and the version-1.0 per-vertex sections `NORM`, `TEXC`
+//! and `COLR` (V14), as one list of attribute views that answer "which value at this
+//! corner" in constant time on the file's bytes.
+
+use super::fields::Fields;
+use super::view::Connectivity;
+use super::Sections;
+use crate::error::{Result, Rule};
+use crate::format::attributes::{
+    bits_for, AttributeHeader, Seams, NORMALIZED, PER_CORNER, RANK_SPAN, RECORD_HEADER_LEN,
+};
+use crate::format::{le_f32, le_u32, Tag};
+use crate::mesh::{ComponentType, Semantic};
+use crate::ops::CornerOps;
+use crate::words::{LeWords, Words};
+
+/// One attribute of a container, borrowed from its bytes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AttributeView<'a> {
+    /// What it means.
+    pub semantic: Semantic,
+    /// Components per value.
+    pub components: u8,
+    /// Type of each component.
+    pub component_type: ComponentType,
+    /// Integers stand for fractions.
+    pub normalized: bool,
+    /// Given per corner (otherwise per vertex).
+    pub per_corner: bool,
+    values: &'a [u8],
+    value_count: u32,
+    extra: u32,
+    flagged: u32,
+    seams: Option<Seams<LeWords<'a>>>,
+}
+
+impl<'a> AttributeView<'a> {
+    /// Values stored: one per container vertex, then the extra ones.
+    pub fn value_count(&self) -> u32 {
+        self.value_count
+    }
+
+    /// Values beyond the vertices' own: the cost of the seams.
+    pub fn extra_values(&self) -> u32 {
+        self.extra
+    }
+
+    /// Triangle slots with a corner on an extra value.
+    pub fn flagged_triangles(&self) -> u32 {
+        self.flagged
+    }
+
+    /// Bytes of one value.
+    pub fn value_len(&self) -> usize {
+        usize::from(self.components) * self.component_type.size()
+    }
+
+    /// The little-endian bytes of value `i`.
+    ///
+    /// # Panics
+    /// When `i` is not below [`AttributeView::value_count`].
+    pub fn value_bytes(&self, i: u32) -> &'a [u8] {
+        assert!(i < self.value_count, "value {i} out of range");
+        let n = self.value_len();
+        &self.values[n * i as usize..n * i as usize + n]
+    }
+
+    /// Value `i` as f32 numbers (normalized integers mapped to fractions); the components
+    /// beyond [`AttributeView::components`] are 0.
+    ///
+    /// # Panics
+    /// When `i` is not below [`AttributeView::value_count`].
+    pub fn value_f32(&self, i: u32) -> [f32; 4] {
+        let b = self.value_bytes(i);
+        let size = self.component_type.size();
+        let mut out = [0.0; 4];
+        for (k, x) in out
+            .iter_mut()
+            .take(usize::from(self.components))
+            .enumerate()
+        {
+            let c = &b[size * k..size * k + size];
+            let raw = match self.component_type {
+                ComponentType::I8 => f64::from(c[0] as i8),
+                ComponentType::U8 => f64::from(c[0]),
+                ComponentType::I16 => f64::from(i16::from_le_bytes([c[0], c[1]])),
+                ComponentType::U16 => f64::from(u16::from_le_bytes([c[0], c[1]])),
+                ComponentType::U32 => f64::from(le_u32(c, 0)),
+                ComponentType::F32 => f64::from(le_f32(c, 0)),
+            };
+            *x = self.component_type.to_f32(raw, self.normalized);
+        }
+        out
+    }
+
+    /// The value index at corner `k` of triangle slot `t`, whose vertex is `v`.
+    pub(super) fn value_index(&self, t: u32, k: usize, v: u32, vertices: u32) -> u32 {
+        match &self.seams {
+            Some(seams) => seams.value_index(t, k, v, vertices),
+            None => v,
+        }
+    }
+}
+
+impl<'a> super::Container<'a> {
+    /// Every attribute of the file.
+    pub fn attributes(&self) -> &[AttributeView<'a>] {
+        &self.attributes
+    }
+
+    /// The attribute of `semantic`, if the file has it.
+    pub fn attribute(&self, semantic: &Semantic) -> Option<&AttributeView<'a>> {
+        self.attributes.iter().find(|a| a.semantic == *semantic)
+    }
+
+    /// The triangle slot of corner `c` and its position `k` in its triangle (0 for `t.c`, 1
+    /// for `t.c.n`, 2 for `t.c.p`).
+    fn slot(&self, c: crate::Corner) -> (u32, usize) {
+        let conn = &self.connectivity;
+        let t = conn.triangle(c);
+        let first = conn.triangle_corner(t);
+        let k = if c == first {
+            0
+        } else if c == conn.next(first) {
+            1
+        } else {
+            2
+        };
+        (t.0, k)
+    }
+
+    /// The index of `a`'s value at corner `c` (for [`AttributeView::value_bytes`] and
+    /// [`AttributeView::value_f32`]), in constant time: the vertex's own value unless the
+    /// corner's triangle is flagged with an extra value there.
+    ///
+    /// # Panics
+    /// When `c` is not a corner of the connectivity, as the corner operators do.
+    pub fn value_index(&self, a: &AttributeView, c: crate::Corner) -> u32 {
+        let (t, k) = self.slot(c);
+        let v = self.connectivity.vertex(c).0;
+        a.value_index(t, k, v, self.vertices)
+    }
+
+    /// The index of `a`'s value at corner `k` of kept-aside triangle `j`.
+    ///
+    /// # Panics
+    /// When `j` is not below [`Container::kept_triangle_count`](super::Container::kept_triangle_count) or `k > 2`.
+    pub fn kept_value_index(&self, a: &AttributeView, j: u32, k: usize) -> u32 {
+        assert!(
+            k < 3 && (j as usize) < self.kept.count() / 3,
+            "kept corner {j}:{k} out of range"
+        );
+        let v = self.kept.at(3 * j as usize + k);
+        a.value_index(
+            self.connectivity.triangle_id_bound() + j,
+            k,
+            v,
+            self.vertices,
+        )
+    }
+
+    /// The parts' labels, when the file has them.
+    pub fn parts(&self) -> Option<&super::PartsView<'a>> {
+        self.parts.as_ref()
+    }
+
+    /// The part index of triangle `t` of the connectivity, when the file has parts.
+    pub fn part_index(&self, t: crate::Triangle) -> Option<u32> {
+        self.parts.as_ref().map(|p| p.part_of_slot(t.0))
+    }
+
+    /// The part index of kept-aside triangle `j`, when the file has parts.
+    pub fn kept_part_index(&self, j: u32) -> Option<u32> {
+        let slot = self.connectivity.triangle_id_bound() + j;
+        self.parts.as_ref().map(|p| p.part_of_slot(slot))
+    }
+}
+
+/// What the attribute rules need to know of the rest of the container.
+pub(super) struct Context<'c, 'a> {
+    pub vertices: u32,
+    pub connectivity: &'c Connectivity<'a>,
+    pub kept: u32,
+    pub copies: LeWords<'a>,
+}
+
+/// Every attribute: the version-1.0 sections first (`NORM`, `TEXC`, `COLR`, already
+/// checked by V14), then the records of `ATTR`.
+pub(super) fn attributes<'a>(
+    sections: &Sections<'a>,
+    legacy: [Option<&'a [u8]>; 3],
+    cx: &Context<'_, 'a>,
+) -> Result<Vec<AttributeView<'a>>> {
+    let [normals, texcoords, colors] = legacy;
+    let plain =
+        |semantic, components, component_type, normalized, values: &'a [u8]| AttributeView {
+            semantic,
+            components,
+            component_type,
+            normalized,
+            per_corner: false,
+            values,
+            value_count: cx.vertices,
+            extra: 0,
+            flagged: 0,
+            seams: None,
+        };
+    let mut out = Vec::new();
+    if let Some(b) = normals {
+        out.push(plain(Semantic::Normal, 3, ComponentType::F32, false, b));
+    }
+    if let Some(b) = texcoords {
+        out.push(plain(
+            Semantic::TexCoord(0),
+            2,
+            ComponentType::F32,
+            false,
+            b,
+        ));
+    }
+    if let Some(b) = colors {
+        out.push(plain(Semantic::Color(0), 4, ComponentType::U8, true, b));
+    }
+    let Some(section) = sections.section(Tag::ATTR) else {
+        return Ok(out);
+    };
+    let f = Fields::new(*section);
+    let count = f.u32(0, Rule(40))?;
+    let slots = u64::from(cx.connectivity.triangle_id_bound()) + u64::from(cx.kept);
+    let mut is_triangle: Option<Vec<bool>> = None;
+    let mut at = 4usize;
+    for i in 0..count {
+        let view = record(&f, at, i, cx, slots, &mut is_triangle)?;
+        if out.iter().any(|a| a.semantic == view.0.semantic) {
+            return Err(f.err(
+                at,
+                Rule(40),
+                format!("attribute {i}: a second {} attribute", view.0.semantic),
+            ));
+        }
+        copies_agree(&f, &view.0, view.1, cx)?;
+        out.push(view.0);
+        at = view.2;
+    }
+    if at != f.len() {
+        return Err(f.err(
+            at,
+            Rule(40),
+            format!("{} bytes after the last of {count} records", f.len() - at),
+        ));
+    }
+    Ok(out)
+}
+
+/// The record at `at`: its view, where its values start, where it ends (V40, V41).
+fn record<'a>(
+    f: &Fields<'a>,
+    at: usize,
+    i: u32,
+    cx: &Context<'_, 'a>,
+    slots: u64,
+    is_triangle: &mut Option<Vec<bool>>,
+) -> Result<(AttributeView<'a>, usize, usize)> {
+    let rule = Rule(40);
+    let bytes = f.bytes();
+    let err = |field: usize, message: String| {
+        f.err(at + field, rule, format!("attribute {i}: {message}"))
+    };
+    if bytes.len() - at < RECORD_HEADER_LEN {
+        return Err(err(
+            0,
+            format!(
+                "{} bytes left, a record header takes {RECORD_HEADER_LEN}",
+                bytes.len() - at
+            ),
+        ));
+    }
+    let h = AttributeHeader::parse(&bytes[at..]);
+    let Some(component_type) = ComponentType::from_code(h.component_type) else {
+        return Err(err(
+            2,
+            format!("unknown component type {}", h.component_type),
+        ));
+    };
+    if h.semantic > 3 {
+        return Err(err(0, format!("unknown semantic {}", h.semantic)));
+    }
+    if h.set != 0 && !matches!(h.semantic, 2 | 3) {
+        return Err(err(1, format!("set {} for a semantic without sets", h.set)));
+    }
+    let kind = h.semantic("").expect("semantic code checked");
+    if !kind.allowed_components().contains(&h.components) {
+        return Err(err(
+            3,
+            format!("{} components for a {kind} attribute", h.components),
+        ));
+    }
+    if h.flags & !(NORMALIZED | PER_CORNER) != 0 {
+        return Err(err(4, format!("unknown flag bits {:#04x}", h.flags)));
+    }
+    let normalized = h.flags & NORMALIZED != 0;
+    if normalized && !component_type.is_integer() {
+        return Err(err(4, "normalized floats".into()));
+    }
+    if let Some(k) = h.reserved.iter().position(|&r| r != 0) {
+        return Err(err(20 + 4 * k, "reserved field is not zero".into()));
+    }
+    let Some(layout) = h.layout(cx.vertices) else {
+        return Err(err(8, "counts overflow".into()));
+    };
+    if layout.len() > bytes.len() - at {
+        return Err(err(
+            0,
+            format!(
+                "{} bytes, the section has {} left",
+                layout.len(),
+                bytes.len() - at
+            ),
+        ));
+    }
+    let name =
+        std::str::from_utf8(&bytes[at + layout.name.start..at + layout.name.end]).map_err(|e| {
+            err(
+                RECORD_HEADER_LEN + e.valid_up_to(),
+                "the name is not UTF-8".into(),
+            )
+        })?;
+    if (h.semantic == 0) == name.is_empty() {
+        return Err(err(
+            6,
+            "a name is given for custom attributes, and only for them".into(),
+        ));
+    }
+    let semantic = h.semantic(name).expect("semantic code checked");
+    let per_corner = h.flags & PER_CORNER != 0;
+    if h.flagged == 0 && (h.extra != 0 || h.entry_bits != 0) {
+        return Err(err(
+            5,
+            "extra values or entry bits with no flagged triangle".into(),
+        ));
+    }
+    if h.flagged != 0
+        && (!per_corner || h.extra == 0 || u32::from(h.entry_bits) != bits_for(h.extra))
+    {
+        return Err(err(
+            5,
+            format!(
+                "{} flagged triangles need a per-corner attribute, extra values and {} entry bits; found {} extra, {} bits",
+                h.flagged,
+                bits_for(h.extra),
+                h.extra,
+                h.entry_bits
+            ),
+        ));
+    }
+    if u64::from(h.slots) != slots {
+        return Err(err(
+            16,
+            format!("{} triangle slots, the container has {slots}", h.slots),
+        ));
+    }
+    let values = &bytes[at + layout.values.start..at + layout.values.end];
+    if component_type == ComponentType::F32 {
+        f.expect_finite(at + layout.values.start..at + layout.values.end, rule)?;
+    }
+    let seams = if h.flagged == 0 {
+        None
+    } else {
+        let words = |r: &std::ops::Range<usize>| LeWords(&bytes[at + r.start..at + r.end]);
+        let seams = Seams {
+            flags: words(&layout.flags),
+            rank: words(&layout.rank),
+            entries: words(&layout.entries),
+            bits: u32::from(h.entry_bits),
+        };
+        check_seams(f, at, i, &h, &layout, &seams, cx, is_triangle)?;
+        Some(seams)
+    };
+    let view = AttributeView {
+        semantic,
+        components: h.components,
+        component_type,
+        normalized,
+        per_corner,
+        values,
+        value_count: cx.vertices + h.extra,
+        extra: h.extra,
+        flagged: h.flagged,
+        seams,
+    };
+    Ok((view, at + layout.values.start, at + layout.len()))
+}
+
+/// V41: `FLAGS` marks `F` triangles of the container and nothing past `S`, `RANK` counts
+/// them, every entry is at most `E` and the bits past the last entry are 0.
+#[allow(clippy::too_many_arguments)]
+fn check_seams(
+    f: &Fields,
+    at: usize,
+    i: u32,
+    h: &AttributeHeader,
+    layout: &crate::format::attributes::RecordLayout,
+    seams: &Seams<LeWords>,
+    cx: &Context,
+    is_triangle: &mut Option<Vec<bool>>,
+) -> Result<()> {
+    let rule = Rule(41);
+    let err = |offset: usize, message: String| {
+        f.err(at + offset, rule, format!("attribute {i}: {message}"))
+    };
+    let bound = cx.connectivity.triangle_id_bound();
+    let marks = is_triangle.get_or_insert_with(|| {
+        let mut marks = vec![false; bound as usize];
+        for t in cx.connectivity.triangles() {
+            marks[t.0 as usize] = true;
+        }
+        marks
+    });
+    let mut flagged = 0u32;
+    for w in 0..seams.flags.count() {
+        if w % (RANK_SPAN as usize / 32) == 0 && seams.rank.at(w / 8) != flagged {
+            return Err(err(
+                layout.rank.start + 4 * (w / 8),
+                format!(
+                    "RANK[{}] is {}, {flagged} slots are flagged before",
+                    w / 8,
+                    seams.rank.at(w / 8)
+                ),
+            ));
+        }
+        let word = seams.flags.at(w);
+        for b in 0..32 {
+            if word >> b & 1 == 0 {
+                continue;
+            }
+            let t = 32 * w as u64 + b;
+            let real = t < u64::from(h.slots) && (t >= u64::from(bound) || marks[t as usize]);
+            if !real {
+                return Err(err(
+                    layout.flags.start + 4 * w,
+                    format!("slot {t} is flagged but holds no triangle"),
+                ));
+            }
+        }
+        flagged += word.count_ones();
+    }
+    if flagged != h.flagged {
+        return Err(err(
+            12,
+            format!("{} flagged triangles, FLAGS marks {flagged}", h.flagged),
+        ));
+    }
+    for j in 0..3 * h.flagged {
+        let e = seams.entry(j);
+        if e > h.extra {
+            return Err(err(
+                layout.entries.start + (u64::from(j) * u64::from(h.entry_bits) / 32) as usize * 4,
+                format!("entry {j} is {e}, there are {} extra values", h.extra),
+            ));
+        }
+    }
+    let used = 3 * u64::from(h.flagged) * u64::from(h.entry_bits);
+    let tail = used % 32;
+    if tail != 0 {
+        let last = seams.entries.at(seams.entries.count() - 1);
+        if last >> tail != 0 {
+            return Err(err(
+                layout.entries.end - 4,
+                "bits past the last entry are not 0".into(),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// V42: a per-vertex attribute gives a copy the value of its original.
+fn copies_agree(f: &Fields, a: &AttributeView, values_at: usize, cx: &Context) -> Result<()> {
+    if a.per_corner {
+        return Ok(());
+    }
+    for p in 0..cx.copies.count() / 2 {
+        let (copy, original) = (cx.copies.at(2 * p), cx.copies.at(2 * p + 1));
+        if a.value_bytes(copy) != a.value_bytes(original) {
+            return Err(f.err(
+                values_at + a.value_len() * copy as usize,
+                Rule(42),
+                format!(
+                    "{} of vertex copy {copy} differs from its original {original}'s",
+                    a.semantic
+                ),
+            ));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,263 @@
+//! The `ATTR` and `PART` sections (FORMAT.md §3.9, §3.10): every attribute's values with
+//! the seams of the per-corner ones, and the part of every triangle, indexed by the
+//! container's triangle slots and corners.
+
+use std::collections::HashMap;
+
+use super::connectivity::Encoded;
+use crate::error::{Error, Result};
+use crate::format::attributes::{
+    bits_for, pack, AttributeHeader, NORMALIZED, PER_CORNER, RANK_SPAN,
+};
+use crate::format::parts::PartsHeader;
+use crate::mesh::{Attribute, Mesh, Semantic};
+
+/// Every corner of the container: the slot of its triangle, its container vertex and the
+/// input corner (`3·input triangle + k`) it came from, in slot order then corner order.
+pub(super) struct Corners {
+    /// `S`: the connectivity's triangle ids, then one slot per kept triangle.
+    pub slots: u32,
+    /// `(slot, container vertices, input corners)` of every triangle, in slot order.
+    pub triangles: Vec<(u32, [u32; 3], [u32; 3])>,
+}
+
+impl Corners {
+    /// The corners of `encoded`'s triangles and of the kept ones (`primary`: the original
+    /// container vertex of each input vertex).
+    pub fn new(
+        mesh: &Mesh,
+        encoded: &Encoded,
+        kept: &[(u32, [u32; 3])],
+        primary: &[u32],
+    ) -> Result<Corners> {
+        let shape = &encoded.shape;
+        let mut triangles = Vec::with_capacity(shape.ids.len() + kept.len());
+        for (j, (&t, &cv)) in shape.ids.iter().zip(&shape.corners).enumerate() {
+            let input = encoded.input_triangle[j];
+            let tri = mesh.triangles[input as usize];
+            let mut from = [0u32; 3];
+            for k in 0..3 {
+                let v = encoded.input_vertex[cv[k] as usize];
+                let Some(k_in) = tri.iter().position(|&x| x == v) else {
+                    return Err(Error::Internal(format!(
+                        "container triangle {t} has vertex {v}, which input triangle {input} lacks"
+                    )));
+                };
+                from[k] = 3 * input + k_in as u32;
+            }
+            triangles.push((t, cv, from));
+        }
+        for (j, &(input, tri)) in kept.iter().enumerate() {
+            let slot = shape.id_bound + j as u32;
+            debug_assert_eq!(tri, mesh.triangles[input as usize]);
+            triangles.push((
+                slot,
+                tri.map(|v| primary[v as usize]),
+                [0, 1, 2].map(|k| 3 * input + k),
+            ));
+        }
+        triangles.sort_unstable_by_key(|&(slot, _, _)| slot);
+        Ok(Corners {
+            slots: shape.id_bound + kept.len() as u32,
+            triangles,
+        })
+    }
+}
+
+/// The `ATTR` payload: `A`, then a record per attribute.
+pub(super) fn attr_section(
+    mesh: &Mesh,
+    corners: &Corners,
+    input_vertex: &[u32],
+) -> Result<Vec<u8>> {
+    let mut out = (mesh.attributes.len() as u32).to_le_bytes().to_vec();
+    for a in &mesh.attributes {
+        out.extend(record(a, corners, input_vertex)?);
+    }
+    Ok(out)
+}
+
+/// One attribute's record. Per vertex: the value of each container vertex's input vertex.
+/// Per corner: each container vertex takes the value most of its corners have; the other
+/// values its corners have (equal bytes, one value) are its extra values, and the triangles
+/// with a corner on an extra value are flagged.
+fn record(a: &Attribute, corners: &Corners, input_vertex: &[u32]) -> Result<Vec<u8>> {
+    let m = input_vertex.len();
+    let n = usize::from(a.components);
+    let (semantic, set) = AttributeHeader::codes(&a.semantic);
+    let name = match &a.semantic {
+        Semantic::Custom(name) => name.as_bytes(),
+        _ => &[],
+    };
+    let name_len = u16::try_from(name.len()).map_err(|_| {
+        Error::Unsupported(format!(
+            "attribute name of {} bytes (at most 65535)",
+            name.len()
+        ))
+    })?;
+    let mut header = AttributeHeader {
+        semantic,
+        set,
+        component_type: a.values.component_type() as u8,
+        components: a.components,
+        flags: if a.normalized { NORMALIZED } else { 0 },
+        name_len,
+        slots: corners.slots,
+        ..AttributeHeader::default()
+    };
+    let mut values = Vec::new();
+    let Some(index) = &a.corners else {
+        for &v in input_vertex {
+            a.value_bytes(v as usize, &mut values);
+        }
+        return Ok(assemble(&header, name, &values, &[], &[], &[]));
+    };
+    header.flags |= PER_CORNER;
+
+    // One id per distinct value (by bytes), so that equal values under two indices agree.
+    let mut ids: HashMap<Vec<u8>, u32> = HashMap::new();
+    let mut canonical = Vec::with_capacity(a.value_count());
+    let mut first_of = Vec::new();
+    for i in 0..a.value_count() {
+        let mut bytes = Vec::with_capacity(n * 4);
+        a.value_bytes(i, &mut bytes);
+        let next = ids.len() as u32;
+        let id = *ids.entry(bytes).or_insert(next);
+        if id == next {
+            first_of.push(i);
+        }
+        canonical.push(id);
+    }
+    let value_at = |from: u32| canonical[index[from as usize] as usize];
+
+    // (vertex, value) of every corner, sorted: each vertex's run gives its base and extras.
+    let mut uses: Vec<(u32, u32)> = corners
+        .triangles
+        .iter()
+        .flat_map(|(_, cv, from)| (0..3).map(move |k| (cv[k], value_at(from[k]))))
+        .collect();
+    uses.sort_unstable();
+    let mut base = vec![u32::MAX; m];
+    let mut extras: Vec<(u32, u32)> = Vec::new(); // (vertex, value), in vertex order
+    let mut at = 0;
+    while at < uses.len() {
+        let v = uses[at].0;
+        let end = at + uses[at..].partition_point(|u| u.0 == v);
+        let mut best = (0, u32::MAX);
+        let mut i = at;
+        while i < end {
+            let run = uses[i..end].partition_point(|u| u.1 == uses[i].1);
+            if run > best.0 {
+                best = (run, uses[i].1);
+            }
+            i += run;
+        }
+        base[v as usize] = best.1;
+        let mut i = at;
+        while i < end {
+            if uses[i].1 != best.1 {
+                extras.push((v, uses[i].1));
+            }
+            i += uses[i..end].partition_point(|u| u.1 == uses[i].1);
+        }
+        at = end;
+    }
+    let e = u32::try_from(extras.len())
+        .ok()
+        .filter(|&e| u64::from(e) + m as u64 <= u64::from(u32::MAX))
+        .ok_or_else(|| Error::Unsupported(format!("{} attribute: too many values", a.semantic)))?;
+    let zero = vec![0u8; n * a.values.component_type().size()];
+    for &b in &base {
+        match b {
+            u32::MAX => values.extend_from_slice(&zero),
+            id => a.value_bytes(first_of[id as usize], &mut values),
+        }
+    }
+    for &(_, id) in &extras {
+        a.value_bytes(first_of[id as usize], &mut values);
+    }
+
+    let mut flags = vec![0u32; corners.slots.div_ceil(32) as usize];
+    let mut entries = Vec::new();
+    for (slot, cv, from) in &corners.triangles {
+        let entry = |k: usize| {
+            let (v, id) = (cv[k], value_at(from[k]));
+            if base[v as usize] == id {
+                0
+            } else {
+                let at = extras.partition_point(|x| *x < (v, id));
+                debug_assert_eq!(extras[at], (v, id));
+                at as u32 + 1
+            }
+        };
+        let triple = [entry(0), entry(1), entry(2)];
+        if triple != [0, 0, 0] {
+            flags[*slot as usize / 32] |= 1 << (slot % 32);
+            entries.extend(triple);
+        }
+    }
+    if entries.is_empty() {
+        return Ok(assemble(&header, name, &values, &[], &[], &[]));
+    }
+    header.extra = e;
+    header.flagged = (entries.len() / 3) as u32;
+    header.entry_bits = bits_for(e) as u8;
+    let rank: Vec<u32> = flags
+        .chunks(RANK_SPAN as usize / 32)
+        .scan(0u32, |before, words| {
+            let r = *before;
+            *before += words.iter().map(|w| w.count_ones()).sum::<u32>();
+            Some(r)
+        })
+        .collect();
+    let packed = pack(&entries, u32::from(header.entry_bits));
+    Ok(assemble(&header, name, &values, &flags, &rank, &packed))
+}
+
+fn assemble(
+    header: &AttributeHeader,
+    name: &[u8],
+    values: &[u8],
+    flags: &[u32],
+    rank: &[u32],
+    entries: &[u32],
+) -> Vec<u8> {
+    let mut out = header.to_bytes();
+    out.extend_from_slice(name);
+    out.extend_from_slice(values);
+    for w in flags.iter().chain(rank).chain(entries) {
+        out.extend_from_slice(&w.to_le_bytes());
+    }
+    out
+}
+
+/// The `PART` payload: the header, the parts as JSON, the packed part index of every slot
+/// (0 for slots that hold no triangle).
+pub(super) fn part_section(mesh: &Mesh, corners: &Corners) -> Result<Option<Vec<u8>>> {
+    let Some(parts) = &mesh.parts else {
+        return Ok(None);
+    };
+    let json = serde_json::to_vec(parts)
+        .map_err(|e| Error::Internal(format!("parts do not serialise: {e}")))?;
+    let count = parts.parts.len() as u32;
+    let header = PartsHeader {
+        parts: count,
+        slots: corners.slots,
+        bits: PartsHeader::bits_for_parts(count),
+        json_len: u32::try_from(json.len())
+            .map_err(|_| Error::Unsupported("part labels beyond 4 GiB of JSON".into()))?,
+    };
+    let mut index = vec![0u32; corners.slots as usize];
+    for (slot, _, from) in &corners.triangles {
+        index[*slot as usize] = parts.of_triangle[from[0] as usize / 3];
+    }
+    let mut out = header.to_bytes();
+    out.extend_from_slice(&json);
+    if header.bits > 0 {
+        for w in pack(&index, header.bits) {
+            out.extend_from_slice(&w.to_le_bytes());
+        }
+    }
+    debug_assert_eq!(header.len(), Some(out.len()));
+    Ok(Some(out))
+}
