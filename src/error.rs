@@ -59,7 +59,7 @@ impl fmt::Display for ParseError {
     }
 }
 
-/// A validity rule of `spec/FORMAT.md`, by its number: `Rule(12)` is **[V12]**.
+/// A validity rule of `spec/FORMAT.md`, by its number: `Rule(12)` is **\[V12\]**.
 ///
 /// Every check the container reader makes belongs to one rule, so a caller (or a test) can
 /// tell which rule a damaged file breaks without reading the message.
