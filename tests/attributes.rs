@@ -3,19 +3,12 @@
 //! zero-copy view answers the value at a corner as the decoded mesh has it; seams cost only
 //! where values differ.
 
-use lrmesh::fuzz_checks::{assert_same_in_order, assert_same_up_to_order};
+use lrmesh::fuzz_checks::round_trip_every_kind;
 use lrmesh::mesh::{Attribute, Part, Parts, Semantic, Values};
 use lrmesh::ops::CornerOps;
-use lrmesh::write::{encode, Connectivity, EncodeOptions};
+use lrmesh::write::{encode, EncodeOptions};
 use lrmesh::{Corner, Mesh};
 use proptest::prelude::*;
-
-const KINDS: [Connectivity; 4] = [
-    Connectivity::Lr,
-    Connectivity::Edgebreaker,
-    Connectivity::Strips,
-    Connectivity::LrCompact,
-];
 
 /// A grid of `n × n` quads on a torus or a sheet, with per-corner texture coordinates that
 /// break along one column (a seam) and per-face normals on some rows (creases).
@@ -73,46 +66,30 @@ fn seamed_grid(n: u32, closed: bool) -> Mesh {
     mesh
 }
 
+/// Every kind, with and without the input order, keeps every corner's values; without the
+/// order, the view answers each corner's value index as the decoded mesh has it.
 fn round_trip(mesh: &Mesh) {
-    for kind in KINDS {
-        for keep_order in [false, true] {
-            let options = EncodeOptions {
-                connectivity: kind,
-                keep_order,
-                ..EncodeOptions::default()
-            };
-            let bytes = encode(mesh, &options).unwrap();
-            let file = lrmesh::open(&bytes).unwrap();
-            let back = file.to_mesh();
-            if keep_order {
-                assert_same_in_order(&back, mesh);
-            } else {
-                assert_same_up_to_order(&back, mesh);
-            }
-            // The view answers each corner's value as the decoded mesh has it.
-            let conn = file.connectivity();
-            let decoded_index: Vec<Vec<u32>> = back
-                .attributes
-                .iter()
-                .map(|a| a.corners.clone().unwrap_or_default())
-                .collect();
-            if !keep_order {
-                for (slot, t) in conn.triangles().enumerate() {
-                    for (k, c) in conn.triangle_corners(t).into_iter().enumerate() {
-                        for (a, view) in file.attributes().iter().enumerate() {
-                            if view.per_corner {
-                                assert_eq!(
-                                    file.value_index(view, c),
-                                    decoded_index[a][3 * slot + k],
-                                    "{kind:?} corner {c}"
-                                );
-                            }
-                        }
+    round_trip_every_kind(mesh, "mesh", |options, bytes, back| {
+        if options.keep_order {
+            return;
+        }
+        let file = lrmesh::open(bytes).unwrap();
+        let conn = file.connectivity();
+        for (slot, t) in conn.triangles().enumerate() {
+            for (k, c) in conn.triangle_corners(t).into_iter().enumerate() {
+                for (view, decoded) in file.attributes().iter().zip(&back.attributes) {
+                    if let Some(index) = &decoded.corners {
+                        assert_eq!(
+                            file.value_index(view, c),
+                            index[3 * slot + k],
+                            "{:?} corner {c}",
+                            options.connectivity
+                        );
                     }
                 }
             }
         }
-    }
+    });
 }
 
 #[test]

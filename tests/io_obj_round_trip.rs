@@ -9,10 +9,9 @@ use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 use common::io_helpers::*;
-use lrmesh::fuzz_checks::{assert_same_in_order, assert_same_up_to_order};
+use lrmesh::fuzz_checks::{assert_same_in_order, round_trip_every_kind};
 use lrmesh::io::MeshFormat;
 use lrmesh::mesh::{Attribute, Part, Parts, Semantic};
-use lrmesh::write::{encode, Connectivity, EncodeOptions};
 use lrmesh::Mesh;
 use proptest::prelude::*;
 
@@ -25,32 +24,11 @@ fn at(mesh: &Mesh, semantic: &Semantic, t: usize, k: usize) -> Option<Vec<f32>> 
 /// Every connectivity kind, with and without the input order: encoded, decoded, and the
 /// same triangles with the same corners (in order when it was kept).
 fn through_container(mesh: &Mesh, name: &str) {
-    for connectivity in [
-        Connectivity::Lr,
-        Connectivity::LrCompact,
-        Connectivity::Edgebreaker,
-        Connectivity::Strips,
-    ] {
-        for keep_order in [false, true] {
-            let options = EncodeOptions {
-                connectivity,
-                keep_order,
-                ..EncodeOptions::default()
-            };
-            let bytes =
-                encode(mesh, &options).unwrap_or_else(|e| panic!("{name} {connectivity:?}: {e}"));
-            let back = lrmesh::open(&bytes)
-                .unwrap_or_else(|e| panic!("{name} {connectivity:?}: {e}"))
-                .to_mesh();
-            assert_same_up_to_order(&back, mesh);
-            if keep_order {
-                assert_same_in_order(&back, mesh);
-            }
-            // And back to OBJ, as `lrmesh decode x.lrm -o x.obj` does.
-            let again = read(&write_to_vec(&back, MeshFormat::Obj), MeshFormat::Obj).mesh;
-            assert_same_in_order(&again, &back);
-        }
-    }
+    round_trip_every_kind(mesh, name, |_, _, back| {
+        // And back to OBJ, as `lrmesh decode x.lrm -o x.obj` does.
+        let again = read(&write_to_vec(back, MeshFormat::Obj), MeshFormat::Obj).mesh;
+        assert_same_in_order(&again, back);
+    });
 }
 
 // ---------------------------------------------------------------------------------------------

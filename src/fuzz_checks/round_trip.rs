@@ -198,6 +198,42 @@ pub fn assert_same_up_to_order(got: &Mesh, want: &Mesh) {
     );
 }
 
+/// `mesh` through the container in every connectivity kind, with and without the input
+/// order: decoded, it has the same triangles with the same values at every corner (in order
+/// when the order was kept). `more` then sees each kind's options, bytes and decoded mesh.
+/// `what` names the mesh in failures.
+pub fn round_trip_every_kind(
+    mesh: &Mesh,
+    what: &str,
+    mut more: impl FnMut(&EncodeOptions, &[u8], &Mesh),
+) {
+    for connectivity in [
+        Connectivity::Lr,
+        Connectivity::LrCompact,
+        Connectivity::Edgebreaker,
+        Connectivity::Strips,
+    ] {
+        for keep_order in [false, true] {
+            let options = EncodeOptions {
+                connectivity,
+                keep_order,
+                ..EncodeOptions::default()
+            };
+            let bytes =
+                encode(mesh, &options).unwrap_or_else(|e| panic!("{what} {connectivity:?}: {e}"));
+            let back = open(&bytes, &Limits::default())
+                .unwrap_or_else(|e| panic!("{what} {connectivity:?}: {e}"))
+                .to_mesh();
+            if keep_order {
+                assert_same_in_order(&back, mesh);
+            } else {
+                assert_same_up_to_order(&back, mesh);
+            }
+            more(&options, &bytes, &back);
+        }
+    }
+}
+
 /// The round-trip target: a soup and options from `data`, encoded and decoded; panics on
 /// any difference.
 pub fn round_trip(data: &[u8]) {
