@@ -182,6 +182,25 @@ pub(super) struct Context<'c, 'a> {
     pub connectivity: &'c Connectivity<'a>,
     pub kept: u32,
     pub copies: LeWords<'a>,
+    /// Which of the connectivity's triangle ids hold a triangle: made once, when `ATTR` or
+    /// `PART` first needs it.
+    pub holds: std::cell::OnceCell<Vec<bool>>,
+}
+
+impl Context<'_, '_> {
+    /// Whether triangle slot `t` (FORMAT.md §3.9; below `S`) holds a triangle: a kept one
+    /// always does, a connectivity id when it is one of its triangles.
+    pub fn holds_triangle(&self, t: u64) -> bool {
+        let bound = self.connectivity.triangle_id_bound();
+        t >= u64::from(bound)
+            || self.holds.get_or_init(|| {
+                let mut holds = vec![false; bound as usize];
+                for t in self.connectivity.triangles() {
+                    holds[t.0 as usize] = true;
+                }
+                holds
+            })[t as usize]
+    }
 }
 
 /// Every attribute: the version-1.0 sections first (`NORM`, `TEXC`, `COLR`, already
@@ -227,10 +246,9 @@ pub(super) fn attributes<'a>(
     let f = Fields::new(*section);
     let count = f.u32(0, Rule(40))?;
     let slots = u64::from(cx.connectivity.triangle_id_bound()) + u64::from(cx.kept);
-    let mut is_triangle: Option<Vec<bool>> = None;
     let mut at = 4usize;
     for i in 0..count {
-        let view = record(&f, at, i, cx, slots, &mut is_triangle)?;
+        let view = record(&f, at, i, cx, slots)?;
         if out.iter().any(|a| a.semantic == view.0.semantic) {
             return Err(f.err(
                 at,
@@ -259,7 +277,6 @@ fn record<'a>(
     i: u32,
     cx: &Context<'_, 'a>,
     slots: u64,
-    is_triangle: &mut Option<Vec<bool>>,
 ) -> Result<(AttributeView<'a>, usize, usize)> {
     let rule = Rule(40);
     let bytes = f.bytes();
@@ -373,7 +390,7 @@ fn record<'a>(
             entries: words(&layout.entries),
             bits: u32::from(h.entry_bits),
         };
-        check_seams(f, at, i, &h, &layout, &seams, cx, is_triangle)?;
+        check_seams(f, at, i, &h, &layout, &seams, cx)?;
         Some(seams)
     };
     let view = AttributeView {
@@ -393,7 +410,6 @@ fn record<'a>(
 
 /// V41: `FLAGS` marks `F` triangles of the container and nothing past `S`, `RANK` counts
 /// them, every entry is at most `E` and the bits past the last entry are 0.
-#[allow(clippy::too_many_arguments)]
 fn check_seams(
     f: &Fields,
     at: usize,
@@ -402,20 +418,11 @@ fn check_seams(
     layout: &crate::format::attributes::RecordLayout,
     seams: &Seams<LeWords>,
     cx: &Context,
-    is_triangle: &mut Option<Vec<bool>>,
 ) -> Result<()> {
     let rule = Rule(41);
     let err = |offset: usize, message: String| {
         f.err(at + offset, rule, format!("attribute {i}: {message}"))
     };
-    let bound = cx.connectivity.triangle_id_bound();
-    let marks = is_triangle.get_or_insert_with(|| {
-        let mut marks = vec![false; bound as usize];
-        for t in cx.connectivity.triangles() {
-            marks[t.0 as usize] = true;
-        }
-        marks
-    });
     let mut flagged = 0u32;
     for w in 0..seams.flags.count() {
         if w % (RANK_SPAN as usize / 32) == 0 && seams.rank.at(w / 8) != flagged {
@@ -434,7 +441,7 @@ fn check_seams(
                 continue;
             }
             let t = 32 * w as u64 + b;
-            let real = t < u64::from(h.slots) && (t >= u64::from(bound) || marks[t as usize]);
+            let real = t < u64::from(h.slots) && cx.holds_triangle(t);
             if !real {
                 return Err(err(
                     layout.flags.start + 4 * w,

@@ -82,13 +82,9 @@ pub(super) fn parts<'a>(
         bits: h.bits,
         indices: LeWords(&f.bytes()[json_end..]),
     };
-    let mut holds = vec![false; bound as usize];
-    for t in cx.connectivity.triangles() {
-        holds[t.0 as usize] = true;
-    }
     for t in 0..h.slots {
         let p = view.part_of_slot(t);
-        let triangle = t >= bound || holds[t as usize];
+        let triangle = cx.holds_triangle(u64::from(t));
         if (triangle && p >= h.parts) || (!triangle && p != 0) {
             let at = json_end + (u64::from(t) * u64::from(h.bits) / 32) as usize * 4;
             return Err(f.err(

@@ -233,6 +233,7 @@ impl<'a> Container<'a> {
             connectivity: &connectivity,
             kept: mesh.kept,
             copies,
+            holds: Default::default(),
         };
         let attributes = attributes::attributes(&sections, legacy, &cx)?;
         let parts = parts::parts(&sections, &cx)?;
