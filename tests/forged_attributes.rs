@@ -238,19 +238,20 @@ fn v41_seam_tables() {
     breaks(&bad, 41, "ATTR", o(last), "past the last entry");
 }
 
+/// A triangle id of the container's connectivity that holds no triangle (strips leave
+/// positions between strips).
+fn empty_slot(bytes: &[u8]) -> u32 {
+    let file = open(bytes, &Limits::default()).unwrap();
+    let conn = file.connectivity();
+    let holds: Vec<u32> = conn.triangles().map(|t| t.0).collect();
+    (0..conn.triangle_id_bound())
+        .find(|t| !holds.contains(t))
+        .expect("strips have a position that is no triangle")
+}
+
 /// [V41] A flagged slot that holds no triangle: strips leave positions between strips.
 #[test]
 fn v41_flag_on_an_empty_slot() {
-    let bytes = encoded(
-        &common::torus_with_everything(6, 5, 0, 0, 0, 3),
-        Connectivity::Strips,
-    );
-    let file = open(&bytes, &Limits::default()).unwrap();
-    let conn = file.connectivity();
-    let holds: Vec<u32> = conn.triangles().map(|t| t.0).collect();
-    let empty = (0..conn.triangle_id_bound())
-        .find(|t| !holds.contains(t))
-        .expect("strips have a position that is no triangle");
     let mut mesh = common::torus_with_everything(6, 5, 0, 0, 0, 3);
     let n = mesh.triangles.len() as u32;
     let uv: Vec<[f32; 2]> = (0..3 * n).map(|i| [i as f32, 0.0]).collect();
@@ -260,6 +261,7 @@ fn v41_flag_on_an_empty_slot() {
         (0..3 * n).collect(),
     ));
     let bytes = encoded(&mesh, Connectivity::Strips);
+    let empty = empty_slot(&bytes);
     let at = section_at(&bytes, Tag::ATTR);
     let p = payload(&bytes, Tag::ATTR);
     let (r0, _, h) = records(&p);
@@ -397,12 +399,7 @@ fn v43_empty_slot_has_part_zero() {
     }
     mesh.parts = Some(parts);
     let bytes = encoded(&mesh, Connectivity::Strips);
-    let file = open(&bytes, &Limits::default()).unwrap();
-    let conn = file.connectivity();
-    let holds: Vec<u32> = conn.triangles().map(|t| t.0).collect();
-    let empty = (0..conn.triangle_id_bound())
-        .find(|t| !holds.contains(t))
-        .expect("strips have a position that is no triangle");
+    let empty = empty_slot(&bytes);
     let at = section_at(&bytes, Tag::PART);
     let p = payload(&bytes, Tag::PART);
     let word = 16 + get(&p, 12) as usize + 4 * (empty as usize / 32);
