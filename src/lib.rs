@@ -49,6 +49,7 @@ pub mod format;
 pub mod fuzz_checks;
 #[cfg(feature = "generate")]
 pub mod generate;
+pub mod geometry;
 pub mod ids;
 pub mod io;
 pub mod lr;

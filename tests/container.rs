@@ -223,32 +223,61 @@ fn forged_strips_sections_are_rejected_or_consistent() {
     eprintln!("{rejected} forged sections rejected, {accepted} accepted as consistent");
 }
 
+/// Quantized positions come back within half a grid step (plus the f32 rounding of the
+/// decoded value), in every kind, at every level, for several precisions; and the file is
+/// smaller than the exact one.
 #[test]
-fn quantized_positions_are_close() {
+fn quantized_positions_are_within_half_a_step() {
     let mesh = read_mesh(&corpus_dir().join("fandisk.off"), &ReadOptions::default())
         .unwrap()
         .mesh;
-    let options = EncodeOptions {
-        keep_order: true,
-        quantize16: true,
-        ..EncodeOptions::default()
-    };
-    let bytes = encode(&mesh, &options).unwrap();
-    let view = open(&bytes, &Limits::default()).unwrap();
-    assert!(view.is_quantized());
-    let back = view.to_mesh();
-    let extent = 10.0f32; // fandisk fits in a box well under 10 units a side
-    for (p, q) in back.positions.iter().zip(&mesh.positions) {
-        for i in 0..3 {
-            assert!((p[i] - q[i]).abs() <= extent / 65535.0, "{p:?} {q:?}");
+    for connectivity in [
+        Connectivity::Lr,
+        Connectivity::Edgebreaker,
+        Connectivity::Strips,
+        Connectivity::LrCompact,
+    ] {
+        for bits in [1, 8, 11, 16, 23, 30] {
+            for level in [0, 6] {
+                let options = EncodeOptions {
+                    connectivity,
+                    keep_order: true,
+                    position_bits: Some(bits),
+                    level,
+                    ..EncodeOptions::default()
+                };
+                let bytes = encode(&mesh, &options).unwrap();
+                let view = open(&bytes, &Limits::default()).unwrap();
+                assert!(view.is_quantized());
+                let back = view.to_mesh();
+                let step = lrmesh::geometry::Grid::of(mesh.positions.iter().copied(), bits).step();
+                let mut worst = 0.0f64;
+                for (p, q) in back.positions.iter().zip(&mesh.positions) {
+                    for i in 0..3 {
+                        let error = (p[i] as f64 - q[i] as f64).abs();
+                        let rounding = p[i].abs() as f64 * f32::EPSILON as f64;
+                        assert!(
+                            error <= step / 2.0 + rounding,
+                            "{connectivity:?} {bits} bits level {level}: {p:?} for {q:?}, step {step}"
+                        );
+                        worst = worst.max(error / step);
+                    }
+                }
+                // The bound is tight: some coordinate is more than a third of a step off.
+                if bits < 20 {
+                    assert!(worst > 0.33, "{connectivity:?} {bits}: worst {worst}");
+                }
+                assert_eq!(back.triangles.len(), mesh.triangles.len());
+                let exact = EncodeOptions {
+                    position_bits: None,
+                    ..options
+                };
+                if bits <= 16 {
+                    assert!(bytes.len() < encode(&mesh, &exact).unwrap().len());
+                }
+            }
         }
     }
-    assert_eq!(back.triangles.len(), mesh.triangles.len());
-    let unquantized = EncodeOptions {
-        quantize16: false,
-        ..options
-    };
-    assert!(bytes.len() < encode(&mesh, &unquantized).unwrap().len());
 }
 
 /// Every single-byte change and every truncation of a small container is an error, never a

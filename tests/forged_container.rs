@@ -224,11 +224,14 @@ fn v10_unknown_required_section() {
     breaks(&bad, 12, "MESH", section_at(&bad, Tag::MESH) + 20, "");
 }
 
-/// Every rule `[Vnn]` of `spec/FORMAT.md` has a test in one of `tests/forged_*.rs` whose
-/// name starts with `vNN_` and whose doc comment starts with `[Vnn]`.
+/// Every rule `[Vnn]` of `spec/FORMAT.md` and `spec/GEOMETRY.md` has a test in one of
+/// `tests/forged_*.rs` whose name starts with `vNN_` and whose doc comment starts with
+/// `[Vnn]`.
 #[test]
 fn every_rule_has_a_forged_test() {
-    let spec = std::fs::read_to_string(manifest().join("spec/FORMAT.md")).unwrap();
+    let spec = ["spec/FORMAT.md", "spec/GEOMETRY.md"]
+        .map(|f| std::fs::read_to_string(manifest().join(f)).unwrap())
+        .join("\n");
     // Every `tests/forged_*.rs`, read at run time: a file added later is scanned too.
     let tests = manifest().join("tests");
     let mut files: Vec<String> = std::fs::read_dir(&tests)

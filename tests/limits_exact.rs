@@ -77,7 +77,7 @@ fn quantized_flat_box_is_valid() {
         vec![[0, 1, 2], [2, 1, 3]],
     );
     let options = EncodeOptions {
-        quantize16: true,
+        position_bits: Some(16),
         keep_order: true,
         ..EncodeOptions::default()
     };

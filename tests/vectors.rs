@@ -38,15 +38,23 @@ const VECTORS: [&str; 7] = [
 /// The sources written as OBJ (per-corner attributes, parts).
 const OBJ_VECTORS: [&str; 1] = ["seamed_cube"];
 
+/// Sources also written with quantized positions (`NAME.q12*.lrm`: a 12-bit grid, GEOM
+/// encodings 2 and 4), each container with a listing of its decoded positions.
+const QUANTIZED_VECTORS: [&str; 2] = ["torus_with_t0", "seamed_cube"];
+
+/// The grid of the quantized vectors.
+const QUANTIZED_BITS: u8 = 12;
+
 fn dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("spec/vectors")
 }
 
 /// The options the vectors are encoded with: input order kept, fixed metadata.
-fn options(connectivity: Connectivity) -> EncodeOptions {
+fn options(connectivity: Connectivity, position_bits: Option<u8>) -> EncodeOptions {
     EncodeOptions {
         connectivity,
         keep_order: true,
+        position_bits,
         metadata: Metadata {
             generator: "lrmesh test vectors".into(),
             ..Metadata::default()
@@ -185,10 +193,48 @@ fn corner_listing<M: CornerOps>(out: &mut String, name: &str, m: &M, counts: Str
     }
 }
 
+/// One line per container vertex: its id and decoded position, each coordinate as the hex
+/// bits of its f32 then its decimal value.
+fn positions_listing(name: &str, bytes: &[u8]) -> String {
+    let file = open(bytes, &Limits::default()).unwrap();
+    let mut out = String::new();
+    writeln!(
+        out,
+        "# lrmesh test vector {name}: the decoded position of every container vertex"
+    )
+    .unwrap();
+    let summary = file.summary();
+    writeln!(
+        out,
+        "# {} vertices, GEOM encoding {}, {} bits",
+        file.connectivity_vertex_count(),
+        summary.positions.encoding,
+        summary.positions.bits.unwrap_or(32)
+    )
+    .unwrap();
+    writeln!(out, "# vertex x y z (f32 bits, then value)").unwrap();
+    for v in 0..file.connectivity_vertex_count() {
+        let p = file.position(lrmesh::Vertex(v));
+        let bits: Vec<String> = p.iter().map(|x| format!("{:08x}", x.to_bits())).collect();
+        writeln!(
+            out,
+            "{v} {} {} {} {:?} {:?} {:?}",
+            bits[0], bits[1], bits[2], p[0], p[1], p[2]
+        )
+        .unwrap();
+    }
+    out
+}
+
 #[test]
 fn vectors_match() {
     let regenerate = std::env::var_os("LRMESH_REGENERATE_VECTORS").is_some();
-    for name in VECTORS {
+    let exact = VECTORS.iter().map(|&name| (name, None));
+    let quantized = QUANTIZED_VECTORS
+        .iter()
+        .map(|&name| (name, Some(QUANTIZED_BITS)));
+    for (name, bits) in exact.chain(quantized) {
+        let grid = bits.map_or(String::new(), |b| format!(".q{b}"));
         for (connectivity, suffix) in [
             (Connectivity::Lr, ""),
             (Connectivity::Edgebreaker, ".edgebreaker"),
@@ -202,15 +248,20 @@ fn vectors_match() {
             };
             let source = dir().join(format!("{name}.{extension}"));
             let mesh = read_mesh(&source, &ReadOptions::default()).unwrap().mesh;
-            let bytes = encode(&mesh, &options(connectivity)).unwrap();
-            let lrm = dir().join(format!("{name}{suffix}.lrm"));
-            let txt = dir().join(format!("{name}{suffix}.txt"));
-            let attributes_txt = dir().join(format!("{name}{suffix}.attributes.txt"));
+            let bytes = encode(&mesh, &options(connectivity, bits)).unwrap();
+            let stem = format!("{name}{grid}{suffix}");
+            let lrm = dir().join(format!("{stem}.lrm"));
+            let txt = dir().join(format!("{stem}.txt"));
+            let attributes_txt = dir().join(format!("{stem}.attributes.txt"));
+            let positions_txt = dir().join(format!("{stem}.positions.txt"));
             if regenerate {
                 std::fs::write(&lrm, &bytes).unwrap();
                 std::fs::write(&txt, listing(name, &bytes)).unwrap();
                 if let Some(a) = attribute_listing(name, &bytes) {
                     std::fs::write(&attributes_txt, a).unwrap();
+                }
+                if bits.is_some() {
+                    std::fs::write(&positions_txt, positions_listing(name, &bytes)).unwrap();
                 }
             }
             let stored = std::fs::read(&lrm).unwrap();
@@ -230,8 +281,25 @@ fn vectors_match() {
                 "{name}: attribute answers differ"
             );
             // Decoding gives back the source exactly (the vectors keep the input order),
-            // every corner's attribute values and every triangle's part included.
+            // every corner's attribute values and every triangle's part included; quantized
+            // positions as listed, within half a step of the source's.
             let back = open(&stored, &Limits::default()).unwrap().to_mesh();
+            let mut mesh = mesh;
+            if let Some(bits) = bits {
+                assert_eq!(
+                    positions_listing(name, &stored),
+                    std::fs::read_to_string(&positions_txt).unwrap(),
+                    "{stem}: decoded positions differ"
+                );
+                let step = lrmesh::geometry::Grid::of(mesh.positions.iter().copied(), bits).step();
+                for (p, q) in back.positions.iter().zip(&mesh.positions) {
+                    for k in 0..3 {
+                        let error = (p[k] as f64 - q[k] as f64).abs();
+                        assert!(error <= step / 2.0 + p[k].abs() as f64 * 1.2e-7, "{stem}");
+                    }
+                }
+                mesh.positions = back.positions.clone();
+            }
             assert_eq!(back.positions, mesh.positions, "{name}");
             assert_same_up_to_rotation(&back.triangles, &mesh.triangles, name);
             lrmesh::fuzz_checks::assert_same_in_order(&back, &mesh);

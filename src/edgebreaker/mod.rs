@@ -55,7 +55,7 @@
 //! two triangles, and at most `3T` corner numberings are allowed (a valid stream numbers each
 //! corner exactly once, which is checked at the end), so the work is linear too.
 
-mod coder;
+pub(crate) mod coder;
 mod decode;
 mod encode;
 mod rebuild;

@@ -167,6 +167,9 @@ pub mod geom {
     pub const F32_VERTEX_LEN: u64 = 12;
     /// Bytes per vertex of encoding 1 (x, y, z as u16).
     pub const Q16_VERTEX_LEN: u64 = 6;
+    /// Bytes of the grid of encodings 2 and 4, after the header: the box minimum (three
+    /// f32), the cube's size (f32), the bits per coordinate (u32).
+    pub const GRID_LEN: usize = 20;
 }
 
 /// Bytes per vertex of the per-vertex attribute sections (§3.4): `NORM` 3 f32, `TEXC` 2 f32,

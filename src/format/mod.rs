@@ -22,14 +22,19 @@ pub const MAJOR: u16 = 1;
 /// Newest minor version written. Readers accept any minor version of their major version.
 pub const MINOR: u16 = 1;
 
-/// The minor version a file of these sections is written with: 1 with a section of version
-/// 1.1 (`ATTR`, `PART`), 0 otherwise, so that files a 1.0 reader reads whole say so.
-pub fn minor_for(tags: impl IntoIterator<Item = Tag>) -> u16 {
-    if tags.into_iter().any(|t| t == Tag::ATTR || t == Tag::PART) {
-        1
-    } else {
-        0
-    }
+/// The minor version a file of these sections (tags and payloads) is written with: 2 with a
+/// position encoding of version 1.2 (`GEOM` encodings 2 to 4), 1 with a section of version
+/// 1.1 (`ATTR`, `PART`), 0 otherwise, so that a file says the oldest version that reads it.
+pub fn minor_for<'a>(sections: impl IntoIterator<Item = (Tag, &'a [u8])>) -> u16 {
+    sections
+        .into_iter()
+        .map(|(tag, bytes)| match tag {
+            Tag::GEOM if bytes.len() >= 4 && le_u32(bytes, 0) >= 2 => 2,
+            Tag::ATTR | Tag::PART => 1,
+            _ => 0,
+        })
+        .max()
+        .unwrap_or(0)
 }
 
 /// Size of the fixed header.
@@ -326,4 +331,15 @@ impl PositionEncoding {
     pub const F32: PositionEncoding = PositionEncoding(0);
     /// A bounding box (six f32: min xyz, max xyz), then three u16 per vertex. Lossy.
     pub const QUANTIZED16: PositionEncoding = PositionEncoding(1);
+    /// A grid of 1 to 30 bits per coordinate, each vertex predicted from the ones before it
+    /// in Edgebreaker decode order and the residuals range coded (GEOMETRY.md). Lossy.
+    pub const PREDICTED_GRID: PositionEncoding = PositionEncoding(2);
+    /// The f32 positions predicted as for encoding 2 and the differences of their bits range
+    /// coded (GEOMETRY.md). Lossless.
+    pub const PREDICTED_F32: PositionEncoding = PositionEncoding(3);
+    /// Random-access blocks of bit-packed levels on a grid (FORMAT.md §3.3). Lossy.
+    pub const BLOCKED: PositionEncoding = PositionEncoding(4);
+    /// Random-access blocks of the f32 positions as ordered integers (FORMAT.md §3.3).
+    /// Lossless.
+    pub const BLOCKED_F32: PositionEncoding = PositionEncoding(5);
 }

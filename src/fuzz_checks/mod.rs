@@ -122,7 +122,7 @@ pub fn container_forged(data: &[u8]) {
     let options = EncodeOptions {
         connectivity: kind,
         keep_order: choice & 0x20 != 0,
-        quantize16: choice & 0x40 != 0,
+        position_bits: (choice & 0x40 != 0).then_some(12),
         ..EncodeOptions::default()
     };
     let bytes = encode(&mesh, &options).expect("a generated mesh encodes");

@@ -78,7 +78,11 @@ fn soup(u: &mut Unstructured) -> Result<(Mesh, EncodeOptions)> {
             seed: u.arbitrary()?,
         },
         keep_order: u.arbitrary()?,
-        quantize16: u.arbitrary()?,
+        position_bits: match u.int_in_range(0..=31u8)? {
+            0 => None,
+            b => Some(b.min(crate::geometry::MAX_GRID_BITS)),
+        },
+        level: u.int_in_range(0..=9)?,
         ..EncodeOptions::default()
     };
     Ok((mesh, options))
@@ -244,23 +248,18 @@ pub fn round_trip(data: &[u8]) {
     let view = open(&bytes, &Limits::default()).expect("what we write opens");
     let back = view.to_mesh();
     assert_eq!(back.positions.len(), mesh.positions.len());
-    if options.quantize16 {
-        // Compare positions on the grid, then use the decoded ones below.
-        let extent = |i: usize| {
-            let (lo, hi) = mesh
-                .positions
-                .iter()
-                .fold((f32::MAX, f32::MIN), |(lo, hi), p| {
-                    (lo.min(p[i]), hi.max(p[i]))
-                });
-            hi - lo
-        };
-        let step = [0, 1, 2].map(|i| extent(i) / 65535.0 * 1.01 + 1e-4);
+    if let Some(bits) = options.position_bits {
+        // Compare positions on the grid (within half a step, plus the f32 rounding of the
+        // decoded value), then use the decoded ones below.
+        let step = crate::geometry::Grid::of(mesh.positions.iter().copied(), bits).step();
         if options.keep_order {
             for (p, q) in back.positions.iter().zip(&mesh.positions) {
                 assert!(
-                    (0..3).all(|i| (p[i] - q[i]).abs() <= step[i]),
-                    "{p:?} {q:?}"
+                    (0..3).all(|i| {
+                        let error = (p[i] as f64 - q[i] as f64).abs();
+                        error <= step * 0.5 * (1.0 + 1e-9) + p[i].abs() as f64 * 1.2e-7
+                    }),
+                    "{bits} bits: {p:?} {q:?}, step {step:?}"
                 );
             }
             mesh.positions = back.positions.clone();

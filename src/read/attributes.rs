@@ -32,9 +32,17 @@ pub struct AttributeView<'a> {
     extra: u32,
     flagged: u32,
     seams: Option<Seams<LeWords<'a>>>,
+    /// Bytes the attribute takes in the file: its record, or its 1.0 section.
+    stored_bytes: u64,
 }
 
 impl<'a> AttributeView<'a> {
+    /// Bytes the attribute takes in the file: its `ATTR` record (header, name, values and
+    /// seam tables), or its version-1.0 section.
+    pub fn stored_bytes(&self) -> u64 {
+        self.stored_bytes
+    }
+
     /// Values stored: one per container vertex, then the extra ones.
     pub fn value_count(&self) -> u32 {
         self.value_count
@@ -223,6 +231,7 @@ pub(super) fn attributes<'a>(
             extra: 0,
             flagged: 0,
             seams: None,
+            stored_bytes: values.len() as u64,
         };
     let mut out = Vec::new();
     if let Some(b) = normals {
@@ -404,6 +413,7 @@ fn record<'a>(
         extra: h.extra,
         flagged: h.flagged,
         seams,
+        stored_bytes: layout.len() as u64,
     };
     Ok((view, at + layout.values.start, at + layout.len()))
 }

@@ -2,11 +2,10 @@
 //! per-vertex attributes (V14), `COPY` (V24), `KEPT` (V25) and `PERM` (V26).
 
 use super::fields::{format_error, Fields};
-use super::view::Positions;
 use super::{Limits, Sections};
 use crate::error::{Error, Result, Rule};
-use crate::format::layout::{self, geom, MeshRecord};
-use crate::format::{le_f32, Kind, Metadata, PositionEncoding, Tag};
+use crate::format::layout::{self, MeshRecord};
+use crate::format::{Kind, Metadata, Tag};
 use crate::words::{LeWords, Words};
 
 /// The `META` section, if present.
@@ -63,54 +62,6 @@ pub(super) fn mesh_record<'a>(sections: &Sections<'a>) -> Result<(MeshRecord, Fi
         ));
     }
     Ok((record, f))
-}
-
-/// The `GEOM` section's positions for `m` vertices.
-pub(super) fn positions<'a>(sections: &Sections<'a>, m: u32) -> Result<Positions<'a>> {
-    let f = Fields::new(sections.required(Tag::GEOM)?);
-    let rule = Rule(13);
-    let m = m as u64;
-    let encoding = PositionEncoding(f.u32(0, rule)?);
-    let positions = match encoding {
-        PositionEncoding::F32 => {
-            let len = m
-                .checked_mul(geom::F32_VERTEX_LEN)
-                .and_then(|x| x.checked_add(geom::HEADER_LEN as u64));
-            f.expect_len(len, rule)?;
-            f.expect_finite(geom::HEADER_LEN..f.len(), rule)?;
-            Positions::F32(&f.bytes()[geom::HEADER_LEN..])
-        }
-        PositionEncoding::QUANTIZED16 => {
-            let data_at = geom::HEADER_LEN + geom::BOX_LEN;
-            let len = m
-                .checked_mul(geom::Q16_VERTEX_LEN)
-                .and_then(|x| x.checked_add(data_at as u64));
-            f.expect_len(len, rule)?;
-            f.expect_finite(geom::HEADER_LEN..data_at, rule)?;
-            let b = f.bytes();
-            let lo: [f32; 3] = std::array::from_fn(|i| le_f32(b, geom::HEADER_LEN + 4 * i));
-            let hi: [f32; 3] = std::array::from_fn(|i| le_f32(b, geom::HEADER_LEN + 12 + 4 * i));
-            if let Some(i) = (0..3).find(|&i| lo[i] > hi[i]) {
-                return Err(f.err(
-                    geom::HEADER_LEN + 4 * i,
-                    rule,
-                    "bounding box minimum above its maximum",
-                ));
-            }
-            Positions::Quantized16 {
-                lo,
-                hi,
-                data: &b[data_at..],
-            }
-        }
-        other => {
-            return Err(f.err(0, rule, format!("unknown position encoding {}", other.0)));
-        }
-    };
-    if f.u32(4, rule)? != 0 {
-        return Err(f.err(4, rule, "reserved field is not zero"));
-    }
-    Ok(positions)
 }
 
 /// A per-vertex attribute section of `size` bytes a vertex, if present.

@@ -21,11 +21,12 @@ pub mod attributes;
 mod counts;
 mod decode;
 mod edgebreaker;
-mod fields;
+pub(crate) mod fields;
 mod lr;
 mod lr_compact;
 mod lr_rules;
 pub mod parts;
+pub(crate) mod positions;
 pub mod sections;
 mod strips;
 pub mod summary;
@@ -33,9 +34,10 @@ pub mod view;
 
 pub use attributes::AttributeView;
 pub use parts::PartsView;
+pub use positions::Positions;
 pub use sections::{Section, Sections};
 pub use summary::{ContainerSummary, SectionSummary};
-pub use view::{Connectivity, Container, Positions};
+pub use view::{Connectivity, Container};
 
 use crate::error::Result;
 

@@ -1,6 +1,6 @@
 //! What a container holds, for reports (`lrmesh info FILE.lrm`).
 
-use super::{Connectivity, Container};
+use super::{Connectivity, Container, Positions};
 use crate::format::{Metadata, Tag, HEADER_LEN};
 use crate::lr::LrLayout;
 use crate::mesh::Semantic;
@@ -56,8 +56,10 @@ pub struct ContainerSummary {
     /// References per triangle: of the LR tables (LR paper, section 8), or of the strips'
     /// `T`, `A` and `C`; none for Edgebreaker.
     pub rpt: Option<f64>,
-    /// Positions stored as 16-bit integers (lossy).
+    /// Positions stored quantized (lossy).
     pub quantized: bool,
+    /// How positions are stored: their encoding, precision and size.
+    pub positions: PositionsSummary,
     /// Attributes present: `normals`, `texcoords`, `colors` (set 0), `texcoords<n>`,
     /// `colors<n>`, or a custom attribute's name.
     pub attributes: Vec<String>,
@@ -69,6 +71,20 @@ pub struct ContainerSummary {
     pub keeps_order: bool,
     /// The metadata, if any.
     pub metadata: Option<Metadata>,
+}
+
+/// The positions, for reports.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct PositionsSummary {
+    /// `f32`, `grid16` (the 1.0 encoding), `predicted-grid`, `predicted-f32`,
+    /// `blocked-grid` or `blocked-f32`.
+    pub encoding: &'static str,
+    /// Bits per coordinate of a grid; none for exact f32.
+    pub bits: Option<u8>,
+    /// Bytes of the `GEOM` section.
+    pub bytes: u64,
+    /// Bits per container vertex.
+    pub bits_per_vertex: f64,
 }
 
 /// One attribute, for reports.
@@ -86,6 +102,10 @@ pub struct AttributeSummary {
     pub extra_values: u32,
     /// Triangles flagged for having a corner on an extra value.
     pub seam_triangles: u32,
+    /// Bytes the attribute takes in the file.
+    pub bytes: u64,
+    /// Bits per container vertex.
+    pub bits_per_vertex: f64,
 }
 
 /// The report name of `semantic`.
@@ -101,6 +121,31 @@ fn attribute_name(semantic: &Semantic) -> String {
 }
 
 impl Container<'_> {
+    fn positions_summary(&self) -> PositionsSummary {
+        let stored = self.stored_positions();
+        let encoding = match stored {
+            Positions::F32(_) => "f32",
+            Positions::Quantized16 { .. } => "grid16",
+            Positions::Decoded { grid: Some(_), .. } => "predicted-grid",
+            Positions::Decoded { grid: None, .. } => "predicted-f32",
+            Positions::Blocked(b) if b.grid().is_some() => "blocked-grid",
+            Positions::Blocked(_) => "blocked-f32",
+        };
+        let bytes = self
+            .sections
+            .section(Tag::GEOM)
+            .map_or(0, |s| s.bytes.len() as u64);
+        PositionsSummary {
+            encoding,
+            bits: match stored {
+                Positions::Quantized16 { .. } => Some(16),
+                other => other.grid().map(|g| g.bits),
+            },
+            bytes,
+            bits_per_vertex: 8.0 * bytes as f64 / (self.vertices.max(1)) as f64,
+        }
+    }
+
     /// A summary of the container for reports.
     pub fn summary(&self) -> ContainerSummary {
         let section_len = |tag: Tag| {
@@ -154,6 +199,8 @@ impl Container<'_> {
                 values: a.value_count(),
                 extra_values: a.extra_values(),
                 seam_triangles: a.flagged_triangles(),
+                bytes: a.stored_bytes(),
+                bits_per_vertex: 8.0 * a.stored_bytes() as f64 / self.vertices.max(1) as f64,
             })
             .collect();
         let attributes = attribute_details.iter().map(|a| a.name.clone()).collect();
@@ -195,6 +242,7 @@ impl Container<'_> {
             connectivity_bpt: per_triangle(8.0 * connectivity_bytes as f64),
             rpt,
             quantized: self.is_quantized(),
+            positions: self.positions_summary(),
             attributes,
             attribute_details,
             parts: self.parts().map(|p| p.labels.parts.len() as u32),
@@ -249,14 +297,16 @@ impl std::fmt::Display for ContainerSummary {
             Some(rpt) => writeln!(f, ", {rpt:.3} references/triangle")?,
             None => writeln!(f)?,
         }
+        let p = &self.positions;
         writeln!(
             f,
-            "positions                {}",
-            if self.quantized {
-                "16-bit quantized (lossy)"
-            } else {
-                "f32"
-            }
+            "positions                {}{}, {} bytes, {:.2} bits/vertex",
+            p.encoding,
+            p.bits.map_or(" (exact)".to_string(), |b| format!(
+                ", {b}-bit grid (lossy)"
+            )),
+            p.bytes,
+            p.bits_per_vertex
         )?;
         if self.attribute_details.is_empty() {
             writeln!(f, "attributes               none")?;
@@ -264,8 +314,8 @@ impl std::fmt::Display for ContainerSummary {
         for a in &self.attribute_details {
             write!(
                 f,
-                "attribute                {} per {}, {}, {} values",
-                a.name, a.binding, a.format, a.values
+                "attribute                {} per {}, {}, {} values, {} bytes, {:.2} bits/vertex",
+                a.name, a.binding, a.format, a.values, a.bytes, a.bits_per_vertex
             )?;
             if a.binding == "corner" {
                 write!(

@@ -4,32 +4,17 @@
 
 use super::attributes::{self, AttributeView};
 use super::parts::{self, PartsView};
+use super::positions::{self, Positions};
 use super::{counts, edgebreaker, lr, lr_compact, strips, Limits, Sections};
 use crate::corner_table::CornerTable;
 use crate::error::{Result, Rule};
-use crate::format::{le_f32, Kind, Metadata};
+use crate::format::{Kind, Metadata};
 use crate::ids::{Corner, Triangle, Vertex};
 use crate::lr::{CompactTables, LrLayout, LrTables};
 use crate::mesh::{ComponentType, Semantic};
 use crate::ops::CornerOps;
 use crate::strips::CtsTables;
 use crate::words::{LeUnits, LeWords, Words};
-
-/// Positions as stored.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Positions<'a> {
-    /// Three f32 per vertex.
-    F32(&'a [u8]),
-    /// A bounding box and three u16 per vertex (lossy).
-    Quantized16 {
-        /// Minimum corner of the box.
-        lo: [f32; 3],
-        /// Maximum corner of the box.
-        hi: [f32; 3],
-        /// The coordinates.
-        data: &'a [u8],
-    },
-}
 
 /// The connectivity of a validated container. It implements [`CornerOps`] for every kind,
 /// so that a caller need not match on it; the variants give the representation's own
@@ -179,7 +164,7 @@ impl<'a> Container<'a> {
         let metadata = counts::metadata(&sections, limits)?;
         let (mesh, mesh_fields) = counts::mesh_record(&sections)?;
         let m = mesh.vertices;
-        let positions = counts::positions(&sections, m)?;
+        let (encoding, stored) = positions::positions(&sections, m)?;
         let legacy = counts::attributes(&sections, m)?;
         let connectivity = match mesh.kind {
             Kind::LR => Connectivity::Lr(lr::lr_tables(&sections, m)?),
@@ -190,6 +175,16 @@ impl<'a> Container<'a> {
             _ => Connectivity::Edgebreaker(Box::new(edgebreaker::edgebreaker_table(
                 &sections, m, limits,
             )?)),
+        };
+        let positions = match stored {
+            Some(p) => p,
+            None => {
+                let table = match &connectivity {
+                    Connectivity::Edgebreaker(t) => Some(&**t),
+                    _ => None,
+                };
+                positions::decode(&sections, encoding, table)?
+            }
         };
         let held = connectivity.triangle_count();
         if held != mesh.triangles as u64 {
@@ -321,7 +316,12 @@ impl<'a> Container<'a> {
 
     /// Whether positions are stored quantized (lossy).
     pub fn is_quantized(&self) -> bool {
-        matches!(self.positions, Positions::Quantized16 { .. })
+        self.positions.is_quantized()
+    }
+
+    /// The positions as stored: their encoding, and the grid of a lossy one.
+    pub fn stored_positions(&self) -> &Positions<'a> {
+        &self.positions
     }
 
     /// Whether the file stores the input's vertex and triangle order.
@@ -345,14 +345,7 @@ impl<'a> Container<'a> {
     /// When `v` is not below [`Container::connectivity_vertex_count`].
     pub fn position(&self, v: Vertex) -> [f32; 3] {
         let i = self.check_vertex(v);
-        match self.positions {
-            Positions::F32(b) => [0, 1, 2].map(|k| le_f32(b, 12 * i + 4 * k)),
-            Positions::Quantized16 { lo, hi, data } => [0, 1, 2].map(|k| {
-                let at = 6 * i + 2 * k;
-                let q = u16::from_le_bytes([data[at], data[at + 1]]) as f64;
-                (lo[k] as f64 + q / 65535.0 * (hi[k] as f64 - lo[k] as f64)) as f32
-            }),
-        }
+        self.positions.get(i)
     }
 
     /// Every container vertex's position, in container vertex order.

@@ -12,7 +12,7 @@ fn header_and_table(sections: &[SectionBytes]) -> Vec<u8> {
     let total = table_end as u64 + sections.iter().map(|s| s.2.len() as u64).sum::<u64>();
     let mut header = Header {
         major: format::MAJOR,
-        minor: format::minor_for(sections.iter().map(|s| s.0)),
+        minor: format::minor_for(sections.iter().map(|s| (s.0, s.2.as_slice()))),
         sections: sections.len() as u32,
         file_length: total,
         table_crc: 0,

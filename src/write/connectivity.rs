@@ -22,6 +22,9 @@ pub(super) struct Encoded {
     pub input_triangle: Vec<u32>,
     /// The triangles as the container reads them: ids, vertices, and the id bound.
     pub shape: Shape,
+    /// Edgebreaker: the corner table the reader builds from the stream, which predicts the
+    /// positions (when they are coded).
+    pub decoder_table: Option<CornerTable>,
 }
 
 /// The connectivity's triangles as a reader sees them (FORMAT.md §4): for each, in order, its
@@ -113,6 +116,7 @@ pub(super) fn lr_section(lr: &Lr) -> Encoded {
             .collect(),
         input_triangle: lr.triangles().map(|t| lr.input_triangle(t)).collect(),
         shape: Shape::of(lr),
+        decoder_table: None,
     }
 }
 
@@ -146,6 +150,7 @@ pub(super) fn lr_compact_section(lr: &CompactLr) -> Encoded {
             .collect(),
         input_triangle: t.triangles().map(|tri| lr.input_triangle(tri)).collect(),
         shape: Shape::of(t),
+        decoder_table: None,
     }
 }
 
@@ -164,20 +169,30 @@ pub(crate) fn lr_compact_header(lr: &CompactLr) -> LrbeHeader {
     }
 }
 
-/// The `EBRK` section of a corner table; with `shape`, the triangles as a reader decodes
-/// them (the stream is decoded again: only the decoder fixes each triangle's first corner).
-pub(super) fn edgebreaker_section(table: &CornerTable, shape: bool) -> Result<Encoded> {
+/// The `EBRK` section of a corner table; with `shape` or `predicted`, the corner table a
+/// reader builds (the stream is decoded again: only the decoder fixes each triangle's first
+/// corner), for the triangles as the reader numbers them and to predict positions.
+pub(super) fn edgebreaker_section(
+    table: &CornerTable,
+    shape: bool,
+    predicted: bool,
+) -> Result<Encoded> {
     let encoded = edgebreaker::encode(table)?;
-    let shape = if shape {
+    let decoder_table = if shape || predicted {
         let unbounded = edgebreaker::Limits {
             max_triangles: u64::MAX,
             max_vertices: u64::MAX,
         };
         let decoded = edgebreaker::decode(&encoded.bytes, &unbounded)?;
-        Shape::of(&CornerTable::build(
+        Some(CornerTable::build(
             decoded.vertex_count as usize,
             &decoded.triangles,
         )?)
+    } else {
+        None
+    };
+    let shape = if let (true, Some(decoded)) = (shape, &decoder_table) {
+        Shape::of(decoded)
     } else {
         Shape {
             id_bound: encoded.triangle_order.len() as u32,
@@ -200,6 +215,7 @@ pub(super) fn edgebreaker_section(table: &CornerTable, shape: bool) -> Result<En
             .map(|&t| table.input_triangle(Triangle(t)))
             .collect(),
         shape,
+        decoder_table,
     })
 }
 
@@ -220,5 +236,6 @@ pub(super) fn strips_section(cts: &Cts) -> Encoded {
         input_vertex: cts.vertices().map(|v| cts.input_vertex(v)).collect(),
         input_triangle: cts.triangles().map(|t| cts.input_triangle(t)).collect(),
         shape: Shape::of(cts),
+        decoder_table: None,
     }
 }

@@ -7,13 +7,14 @@
 mod assemble;
 mod attributes;
 mod connectivity;
+mod positions;
 
 pub use assemble::{assemble, write_sections, SectionBytes};
 
 use crate::corner_table::CornerTable;
 use crate::error::{Error, Result};
-use crate::format::layout::{geom, write_fields, MeshRecord};
-use crate::format::{Flags, Metadata, PositionEncoding, Tag};
+use crate::format::layout::{write_fields, MeshRecord};
+use crate::format::{Flags, Metadata, Tag};
 use crate::lr::{CompactLr, CompactOptions, Lr, LrOptions};
 use crate::strips::{Cts, StripOptions};
 use crate::Mesh;
@@ -35,6 +36,9 @@ pub enum Connectivity {
     LrCompact,
 }
 
+/// The compression level of [`EncodeOptions::default`].
+pub const DEFAULT_LEVEL: u8 = 6;
+
 /// How to encode.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct EncodeOptions {
@@ -49,8 +53,13 @@ pub struct EncodeOptions {
     pub strips: StripOptions,
     /// Store the permutations back to the input's vertex and triangle order.
     pub keep_order: bool,
-    /// Store positions as 16-bit integers in the bounding box (lossy) instead of f32.
-    pub quantize16: bool,
+    /// Positions on a grid of this many bits per coordinate (1 to 30) in their bounding box,
+    /// within half a step of their value (lossy); `None` keeps the f32s exactly.
+    pub position_bits: Option<u8>,
+    /// Compression level, 0 to 9. Level 0 stores positions raw (f32, or 16-bit words), the
+    /// fastest to write and to open; from level 1 they are coded: predicted and range coded
+    /// for Edgebreaker, in random-access blocks for the other kinds.
+    pub level: u8,
     /// The metadata to store.
     pub metadata: Metadata,
 }
@@ -63,7 +72,8 @@ impl Default for EncodeOptions {
             periods: CompactOptions::default().periods,
             strips: StripOptions::default(),
             keep_order: false,
-            quantize16: false,
+            position_bits: None,
+            level: DEFAULT_LEVEL,
             metadata: Metadata {
                 generator: format!("lrmesh {}", env!("CARGO_PKG_VERSION")),
                 ..Metadata::default()
@@ -128,14 +138,21 @@ pub fn encode_built(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Resul
 }
 
 /// The connectivity section of `built`.
-fn connectivity(built: Built, options: &EncodeOptions, shape: bool) -> Result<Encoded> {
+fn connectivity(
+    built: Built,
+    options: &EncodeOptions,
+    shape: bool,
+    predicted: bool,
+) -> Result<Encoded> {
     Ok(match built {
         Built::Lr(lr) => connectivity::lr_section(lr),
         Built::LrCompact(lr) => connectivity::lr_compact_section(lr),
         Built::Strips(cts) => connectivity::strips_section(cts),
         Built::Table(table) => match options.connectivity {
             Connectivity::Lr => connectivity::lr_section(&Lr::build(table, &options.lr)?),
-            Connectivity::Edgebreaker => connectivity::edgebreaker_section(table, shape)?,
+            Connectivity::Edgebreaker => {
+                connectivity::edgebreaker_section(table, shape, predicted)?
+            }
             Connectivity::Strips => {
                 connectivity::strips_section(&Cts::build(table, &options.strips)?)
             }
@@ -160,7 +177,8 @@ fn sections(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<Se
     };
     // Per-corner attributes and parts need the triangles as a reader numbers them.
     let shape = mesh.has_per_corner_attributes() || mesh.parts.is_some();
-    let encoded = connectivity(built, options, shape)?;
+    let predicted = options.level > 0;
+    let encoded = connectivity(built, options, shape, predicted)?;
     let m = encoded.input_vertex.len() as u32;
     let per_vertex = |v: u32| encoded.input_vertex[v as usize] as usize;
     let triangle_total = encoded.input_triangle.len() + kept.len();
@@ -205,10 +223,16 @@ fn sections(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<Se
         reserved: 0,
     };
     sections.push((Tag::MESH, Flags::REQUIRED, record.to_bytes()));
+    let container_positions: Vec<[f32; 3]> =
+        (0..m).map(|v| mesh.positions[per_vertex(v)]).collect();
     sections.push((
         Tag::GEOM,
         Flags::REQUIRED,
-        positions(mesh, m, &per_vertex, options.quantize16),
+        positions::section(
+            &container_positions,
+            options,
+            encoded.decoder_table.as_ref(),
+        )?,
     ));
 
     if !mesh.attributes.is_empty() || mesh.parts.is_some() {
@@ -256,57 +280,4 @@ fn sections(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<Se
         sections.push((Tag::PERM, Flags::NONE, p));
     }
     Ok(sections)
-}
-
-/// The `GEOM` section: f32 positions, or 16-bit ones in the bounding box.
-fn positions(mesh: &Mesh, m: u32, per_vertex: &dyn Fn(u32) -> usize, quantize16: bool) -> Vec<u8> {
-    let mut p = Vec::new();
-    if quantize16 {
-        let (lo, hi) = bounding_box(&mesh.positions);
-        write_fields(&mut p, &[PositionEncoding::QUANTIZED16.0, 0]);
-        p.extend(lo.iter().chain(&hi).flat_map(|x| x.to_le_bytes()));
-        debug_assert_eq!(p.len(), geom::HEADER_LEN + geom::BOX_LEN);
-        for v in 0..m {
-            for x in quantize(mesh.positions[per_vertex(v)], lo, hi) {
-                p.extend_from_slice(&x.to_le_bytes());
-            }
-        }
-    } else {
-        write_fields(&mut p, &[PositionEncoding::F32.0, 0]);
-        p.extend(
-            (0..m)
-                .flat_map(|v| mesh.positions[per_vertex(v)])
-                .flat_map(f32::to_le_bytes),
-        );
-    }
-    p
-}
-
-fn bounding_box(positions: &[[f32; 3]]) -> ([f32; 3], [f32; 3]) {
-    if positions.is_empty() {
-        return ([0.0; 3], [0.0; 3]);
-    }
-    positions
-        .iter()
-        .fold(([f32::MAX; 3], [f32::MIN; 3]), |(lo, hi), p| {
-            (
-                [0, 1, 2].map(|i| lo[i].min(p[i])),
-                [0, 1, 2].map(|i| hi[i].max(p[i])),
-            )
-        })
-}
-
-/// 16-bit coordinates of `p` in the box: `round((p - lo) / (hi - lo) * 65535)`, 0 where the
-/// box is flat.
-fn quantize(p: [f32; 3], lo: [f32; 3], hi: [f32; 3]) -> [u16; 3] {
-    [0, 1, 2].map(|i| {
-        let extent = hi[i] as f64 - lo[i] as f64;
-        if extent > 0.0 {
-            ((p[i] as f64 - lo[i] as f64) / extent * 65535.0)
-                .round()
-                .clamp(0.0, 65535.0) as u16
-        } else {
-            0
-        }
-    })
 }

@@ -27,9 +27,19 @@ pub struct Args {
     /// Store the input's vertex and triangle order, so that decoding restores it.
     #[arg(long)]
     keep_order: bool,
-    /// Store positions quantized to this many bits in their bounding box (lossy; 16 only).
-    #[arg(long, value_parser = clap::value_parser!(u8).range(16..=16))]
-    quantize: Option<u8>,
+    /// Store positions on a grid of this many bits per coordinate (1 to 30) in their
+    /// bounding box: lossy, each coordinate within half a grid step. Without it, the f32
+    /// positions are kept exactly. `--quantize` is the same option.
+    #[arg(long, visible_alias = "quantize", value_name = "BITS",
+          value_parser = clap::value_parser!(u8).range(1..=30))]
+    quantize_position: Option<u8>,
+    /// Compression level, 0 to 9: 0 stores positions raw (f32, or 16-bit words: the fastest
+    /// to write and to open); from 1, Edgebreaker predicts them and range codes the residuals,
+    /// and the random-access kinds store positions in blocks (exact ones when that is smaller
+    /// than raw f32).
+    #[arg(short, long, default_value_t = write::DEFAULT_LEVEL,
+          value_parser = clap::value_parser!(u8).range(0..=9))]
+    level: u8,
     /// RING-EXPANDER runs per component; the best ring is kept.
     #[arg(long, default_value_t = LrOptions::default().tries)]
     tries: u32,
@@ -75,7 +85,8 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
         },
         periods: compact_periods(args.period),
         keep_order: args.keep_order,
-        quantize16: args.quantize.is_some(),
+        position_bits: args.quantize_position,
+        level: args.level,
         ..EncodeOptions::default()
     };
     options.metadata.source = args
@@ -120,8 +131,8 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
         32.0 * table_refs as f64 / n,
         table_refs as f64 / n
     );
-    if summary.quantized {
-        say!("positions quantized to 16 bits: lossy");
+    if let Some(bits) = args.quantize_position {
+        say!("positions quantized to {bits} bits: lossy");
     }
     Ok(())
 }
