@@ -337,3 +337,72 @@ fn bench_json_has_one_row_per_representation() {
         "{text}"
     );
 }
+
+/// `--quantize-position` (and its alias `--quantize`) and `-l` choose the position encoding
+/// that `info --json` reports under `positions`; out-of-range values are refused.
+#[test]
+fn encode_position_options_and_info_positions() {
+    let input = corpus("fandisk.off");
+    let cases: [(&[&str], &str, Option<u64>); 6] = [
+        (&["--connectivity", "edgebreaker"], "predicted-f32", None),
+        (
+            &["--connectivity", "edgebreaker", "--quantize-position", "11"],
+            "predicted-grid",
+            Some(11),
+        ),
+        (
+            &[
+                "--connectivity",
+                "edgebreaker",
+                "--quantize",
+                "16",
+                "-l",
+                "0",
+            ],
+            "grid16",
+            Some(16),
+        ),
+        (&["-l", "0"], "f32", None),
+        (&["--quantize-position", "14"], "blocked-grid", Some(14)),
+        (
+            &[
+                "--connectivity",
+                "strips",
+                "--quantize-position",
+                "14",
+                "--level",
+                "0",
+            ],
+            "blocked-grid",
+            Some(14),
+        ),
+    ];
+    for (i, (options, encoding, bits)) in cases.iter().enumerate() {
+        let out = scratch(&format!("positions{i}.lrm"));
+        let mut args = vec!["encode", &input, "-o", out.to_str().unwrap()];
+        args.extend_from_slice(options);
+        let status = lrmesh(&args);
+        assert!(
+            status.status.success(),
+            "{options:?}: {}",
+            String::from_utf8_lossy(&status.stderr)
+        );
+        let info = json(&lrmesh(&["info", out.to_str().unwrap(), "--json"]));
+        let p = &info["positions"];
+        assert_eq!(p["encoding"], *encoding, "{options:?}");
+        assert_eq!(p["bits"].as_u64(), *bits, "{options:?}");
+        assert!(p["bits_per_vertex"].as_f64().unwrap() > 0.0);
+        assert_eq!(info["quantized"], bits.is_some());
+    }
+    for bad in [
+        ["--quantize-position", "0"],
+        ["--quantize-position", "31"],
+        ["-l", "10"],
+    ] {
+        let out = scratch("refused.lrm");
+        let mut args = vec!["encode", &input, "-o", out.to_str().unwrap()];
+        args.extend_from_slice(&bad);
+        let status = lrmesh(&args);
+        assert!(!status.status.success(), "{bad:?} accepted");
+    }
+}
