@@ -197,3 +197,163 @@ proptest! {
         round_trip(&mesh);
     }
 }
+
+/// The angle between `a` and the direction of `b`, in radians.
+fn angle(a: &[f32], b: &[f32]) -> f64 {
+    let (a, b) = (
+        [a[0], a[1], a[2]].map(f64::from),
+        [b[0], b[1], b[2]].map(f64::from),
+    );
+    let dot: f64 = (0..3).map(|k| a[k] * b[k]).sum();
+    let cross = [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ];
+    cross.iter().map(|x| x * x).sum::<f64>().sqrt().atan2(dot)
+}
+
+/// Quantized values (FORMAT.md §3.9.1) in every kind, with and without the input order:
+/// decoding gives what [`dequantized`] says, the view gives the same at every corner, and
+/// every value is within the stated error: half a step per grid component, `3·√2 / max`
+/// radians for an octahedral normal.
+fn quantized_round_trip(mesh: &Mesh, normal_bits: u8, texcoord_bits: u8) {
+    use lrmesh::fuzz_checks::{assert_same_in_order, assert_same_up_to_order};
+    use lrmesh::write::{dequantized, Connectivity};
+    for connectivity in [
+        Connectivity::Lr,
+        Connectivity::LrCompact,
+        Connectivity::Edgebreaker,
+        Connectivity::Strips,
+    ] {
+        for keep_order in [false, true] {
+            let options = EncodeOptions {
+                connectivity,
+                keep_order,
+                normal_bits: Some(normal_bits),
+                texcoord_bits: Some(texcoord_bits),
+                ..EncodeOptions::default()
+            };
+            let want = dequantized(mesh, &options).unwrap();
+            // The error bounds, value by value.
+            for (a, q) in mesh.attributes.iter().zip(&want.attributes) {
+                for i in 0..a.value_count() {
+                    let (x, y) = (a.value_f32(i), q.value_f32(i));
+                    if a.semantic == Semantic::Normal {
+                        let max = ((1u64 << normal_bits) - 1) as f64;
+                        let e = angle(&y, &x);
+                        assert!(e <= 3.0 * 2f64.sqrt() / max + 1e-6, "{x:?} {y:?}: {e}");
+                        let len: f64 = y.iter().map(|&c| (c as f64).powi(2)).sum();
+                        assert!((len - 1.0).abs() < 1e-6);
+                    } else {
+                        let lo = (0..a.value_count())
+                            .map(|j| a.value_f32(j))
+                            .fold([f32::MAX; 2], |m, v| [m[0].min(v[0]), m[1].min(v[1])]);
+                        let hi = (0..a.value_count())
+                            .map(|j| a.value_f32(j))
+                            .fold([f32::MIN; 2], |m, v| [m[0].max(v[0]), m[1].max(v[1])]);
+                        let size = (0..2)
+                            .map(|k| hi[k] as f64 - lo[k] as f64)
+                            .fold(0.0, f64::max);
+                        let step = size / ((1u64 << texcoord_bits) - 1) as f64;
+                        for k in 0..2 {
+                            let e = (x[k] as f64 - y[k] as f64).abs();
+                            assert!(e <= step / 2.0 * (1.0 + 1e-6) + 1.2e-7 * y[k].abs() as f64);
+                        }
+                    }
+                }
+            }
+            let bytes = encode(mesh, &options).unwrap();
+            assert_eq!(u16::from_le_bytes([bytes[10], bytes[11]]), 2, "version 1.2");
+            let file = lrmesh::open(&bytes).unwrap();
+            let back = file.to_mesh();
+            if keep_order {
+                assert_same_in_order(&back, &want);
+            } else {
+                assert_same_up_to_order(&back, &want);
+                let conn = file.connectivity();
+                for (slot, t) in conn.triangles().enumerate() {
+                    for (k, c) in conn.triangle_corners(t).into_iter().enumerate() {
+                        for (view, decoded) in file.attributes().iter().zip(&back.attributes) {
+                            assert_eq!(view.value_encoding(), 1);
+                            let i = file.value_index(view, c);
+                            assert!(view.value_bytes(i).is_none());
+                            let index = decoded.corners.as_ref().unwrap();
+                            let got = view.value_f32(i);
+                            let from_mesh = decoded.value_f32(index[3 * slot + k] as usize);
+                            assert_eq!(&got[..from_mesh.len()], &from_mesh[..]);
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn quantized_values_survive_every_kind_within_their_bounds() {
+    for bits in [(10, 12), (4, 3), (24, 30), (1, 1)] {
+        quantized_round_trip(&seamed_grid(6, true), bits.0, bits.1);
+        quantized_round_trip(&seamed_grid(5, false), bits.0, bits.1);
+    }
+}
+
+#[test]
+fn quantized_values_are_smaller_and_raw_files_do_not_change() {
+    let mesh = seamed_grid(8, true);
+    let raw = encode(&mesh, &EncodeOptions::default()).unwrap();
+    let options = EncodeOptions {
+        normal_bits: Some(10),
+        texcoord_bits: Some(12),
+        ..EncodeOptions::default()
+    };
+    let quantized = encode(&mesh, &options).unwrap();
+    let attr = |b: &[u8]| {
+        let file = lrmesh::open(b).unwrap();
+        let n = file
+            .sections
+            .section(lrmesh::format::Tag::ATTR)
+            .unwrap()
+            .bytes
+            .len();
+        n
+    };
+    assert!(
+        3 * attr(&quantized) < attr(&raw),
+        "{} {}",
+        attr(&quantized),
+        attr(&raw)
+    );
+    // Integer attributes stay raw; bits out of range are refused.
+    let mut colored = mesh.clone();
+    colored
+        .attributes
+        .push(lrmesh::mesh::Attribute::rgba8(&vec![
+            [1, 2, 3, 4];
+            colored.positions.len()
+        ]));
+    let file_bytes = encode(
+        &colored,
+        &EncodeOptions {
+            color_bits: Some(8),
+            ..options.clone()
+        },
+    )
+    .unwrap();
+    let file = lrmesh::open(&file_bytes).unwrap();
+    let color = file.attribute(&Semantic::Color(0)).unwrap();
+    assert_eq!(color.value_encoding(), 0);
+    assert_eq!(file.color(lrmesh::Vertex(0)), Some([1, 2, 3, 4]));
+    for bad in [
+        EncodeOptions {
+            normal_bits: Some(25),
+            ..EncodeOptions::default()
+        },
+        EncodeOptions {
+            texcoord_bits: Some(0),
+            ..EncodeOptions::default()
+        },
+    ] {
+        assert!(encode(&mesh, &bad).is_err());
+    }
+}

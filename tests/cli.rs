@@ -406,3 +406,50 @@ fn encode_position_options_and_info_positions() {
         assert!(!status.status.success(), "{bad:?} accepted");
     }
 }
+
+/// `--quantize-normal` and `--quantize-texcoord` make the attribute records smaller and the
+/// file version 1.2; bits out of range are refused.
+#[test]
+fn encode_attribute_quantization_options() {
+    let input = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("corpus/assets/obj/spider/spider.obj")
+        .to_string_lossy()
+        .into_owned();
+    let attribute_bytes = |options: &[&str]| {
+        let out = scratch(&format!("attributes{}.lrm", options.len()));
+        let mut args = vec!["encode", &input, "-o", out.to_str().unwrap()];
+        args.extend_from_slice(options);
+        let status = lrmesh(&args);
+        assert!(
+            status.status.success(),
+            "{}",
+            String::from_utf8_lossy(&status.stderr)
+        );
+        let info = json(&lrmesh(&["info", out.to_str().unwrap(), "--json"]));
+        let bytes: u64 = info["attribute_details"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|a| a["bytes"].as_u64().unwrap())
+            .sum();
+        (info["version"].as_str().unwrap().to_string(), bytes)
+    };
+    // Level 0 keeps the positions raw, so that only the attributes decide the version.
+    let (raw_version, raw) = attribute_bytes(&["-l", "0"]);
+    let (version, quantized) = attribute_bytes(&[
+        "-l",
+        "0",
+        "--quantize-normal",
+        "10",
+        "--quantize-texcoord",
+        "12",
+    ]);
+    assert_eq!((raw_version.as_str(), version.as_str()), ("1.1", "1.2"));
+    assert!(quantized * 2 < raw, "{quantized} of {raw}");
+    for bad in [["--quantize-normal", "25"], ["--quantize-texcoord", "0"]] {
+        let out = scratch("refused-attributes.lrm");
+        let mut args = vec!["encode", &input, "-o", out.to_str().unwrap()];
+        args.extend_from_slice(&bad);
+        assert!(!lrmesh(&args).status.success(), "{bad:?} accepted");
+    }
+}

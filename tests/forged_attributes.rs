@@ -1,4 +1,5 @@
-//! Forged containers for the rules of `ATTR` and `PART` (FORMAT.md §3.9, §3.10: [V40]–[V43])
+//! Forged containers for the rules of `ATTR` and `PART` (FORMAT.md §3.9, §3.10: [V40]–[V43],
+//! [V46])
 //! and of the version-1.0 attribute sections ([V14]). How a rule is broken and what the
 //! reader must report: `tests/common/forge.rs`.
 
@@ -127,9 +128,11 @@ fn v40_attribute_records() {
         o(r0 + 5),
         "per-corner",
     );
+    // The first reserved word's low byte is the value encoding ([V46]).
     for k in 0..3 {
-        let bad = byte(&bytes, r0 + 20 + 4 * k, 1);
-        breaks(&bad, 40, "ATTR", o(r0 + 20 + 4 * k), "reserved");
+        let at = r0 + 20 + 4 * k + usize::from(k == 0);
+        let bad = byte(&bytes, at, 1);
+        breaks(&bad, 40, "ATTR", o(at), "reserved");
     }
     // A name on a standard semantic, none on a custom one, a name that is not UTF-8.
     let bad = forge(&bytes, Tag::ATTR, |p| {
@@ -440,4 +443,140 @@ fn v14_attributes() {
             breaks(&bad, 14, &tag.name(), at + field as u64, "non-finite");
         }
     }
+}
+
+/// The cube with per-vertex normals after its custom byte and texture coordinates last,
+/// encoded with normals on 9 bits and texture coordinates on 11 (so that both records end
+/// inside a word): the payload's three records as (offset, header).
+fn quantized_cube() -> (Vec<u8>, [(usize, AttributeHeader); 3]) {
+    use lrmesh::write::{encode, EncodeOptions};
+    let mut mesh = cube();
+    let uv = mesh.attributes.remove(0);
+    let normals: Vec<[f32; 3]> = mesh.positions.iter().map(|p| p.map(|x| x - 0.5)).collect();
+    mesh.attributes
+        .push(Attribute::per_vertex(Semantic::Normal, &normals));
+    mesh.attributes.push(uv);
+    let options = EncodeOptions {
+        keep_order: true,
+        normal_bits: Some(9),
+        texcoord_bits: Some(11),
+        ..EncodeOptions::default()
+    };
+    let bytes = encode(&mesh, &options).unwrap();
+    open(&bytes, &Limits::default()).expect("a valid container to forge");
+    let p = payload(&bytes, Tag::ATTR);
+    let mut at = 4;
+    let records = [0; 3].map(|_| {
+        let h = AttributeHeader::parse(&p[at..]);
+        let len = record_len(&p[at..], &h);
+        let r = (at, h);
+        at += len;
+        r
+    });
+    assert_eq!(at, p.len());
+    (bytes, records)
+}
+
+/// The length of the record `r` whose header is `h`, quantized or not (8 vertices).
+fn record_len(r: &[u8], h: &AttributeHeader) -> usize {
+    use lrmesh::format::quantized::Quantizer;
+    if h.value_encoding() == 0 {
+        return h.layout(8).unwrap().len();
+    }
+    let bits = r[32 + h.name_len as usize];
+    let q = if h.semantic == 1 {
+        Quantizer::Octahedral { bits }
+    } else {
+        Quantizer::Grid {
+            bits,
+            components: h.components,
+            lo: [0.0; 4],
+            size: 0.0,
+        }
+    };
+    let values = q.values_len(8 + u64::from(h.extra)).unwrap();
+    h.layout_with_values(values).unwrap().len()
+}
+
+/// [V46] The value encoding: known, quantized only for f32 components, `b` in range, the
+/// values part within the section, a finite range and size at least 0, and the last word's
+/// unused bits 0.
+#[test]
+fn v46_quantized_values() {
+    let (bytes, [(custom, hc), (normal, hn), (uv, hu)]) = quantized_cube();
+    assert_eq!(
+        (
+            hc.value_encoding(),
+            hn.value_encoding(),
+            hu.value_encoding()
+        ),
+        (0, 1, 1)
+    );
+    assert!(hu.flagged > 0);
+    let at = section_at(&bytes, Tag::ATTR);
+    let o = |x: usize| at + x as u64;
+    // An unknown encoding; encoding 1 on integers.
+    breaks(
+        &byte(&bytes, normal + 20, 2),
+        46,
+        "ATTR",
+        o(normal + 20),
+        "unknown value encoding",
+    );
+    breaks(
+        &byte(&bytes, custom + 20, 1),
+        46,
+        "ATTR",
+        o(custom + 20),
+        "component type",
+    );
+    // `b` out of range: 0, 25 for a normal, 31 otherwise.
+    let (nb, ub) = (normal + 32, uv + 32);
+    assert_eq!((bytes_at(&bytes, nb), bytes_at(&bytes, ub)), (9, 11));
+    breaks(
+        &byte(&bytes, nb, 0),
+        46,
+        "ATTR",
+        o(nb),
+        "bits per quantized",
+    );
+    breaks(&byte(&bytes, nb, 25), 46, "ATTR", o(nb), "1 to 24");
+    breaks(&byte(&bytes, ub, 31), 46, "ATTR", o(ub), "1 to 30");
+    // One bit more: the last record no longer fits.
+    breaks(&byte(&bytes, ub, 12), 46, "ATTR", o(uv), "section has");
+    // A range that is not finite, a negative size.
+    let bad = forge(&bytes, Tag::ATTR, |p| {
+        p[ub + 1..ub + 5].copy_from_slice(&f32::NAN.to_le_bytes())
+    });
+    breaks(&bad, 46, "ATTR", o(ub + 1), "lo[0]");
+    let bad = forge(&bytes, Tag::ATTR, |p| {
+        p[ub + 5..ub + 9].copy_from_slice(&f32::INFINITY.to_le_bytes())
+    });
+    breaks(&bad, 46, "ATTR", o(ub + 5), "lo[1]");
+    let bad = forge(&bytes, Tag::ATTR, |p| {
+        p[ub + 9..ub + 13].copy_from_slice(&(-1.0f32).to_le_bytes())
+    });
+    breaks(&bad, 46, "ATTR", o(ub + 9), "size -1");
+    // A bit set past the last value: 8 normals of 2 · 9 bits end inside the fifth word.
+    let end = normal + record_len(&payload(&bytes, Tag::ATTR)[normal..], &hn);
+    let bad = forge(&bytes, Tag::ATTR, |p| p[end - 1] |= 0x80);
+    breaks(
+        &bad,
+        46,
+        "ATTR",
+        o(end - 4),
+        "bits past the last quantized value",
+    );
+    // A zero size is valid: every value is `lo`.
+    let ok = forge(&bytes, Tag::ATTR, |p| {
+        p[ub + 9..ub + 13].copy_from_slice(&0.0f32.to_le_bytes())
+    });
+    let file = open(&ok, &Limits::default()).unwrap();
+    let a = file.attribute(&Semantic::TexCoord(0)).unwrap();
+    assert_eq!(a.value_f32(3), a.value_f32(0));
+}
+
+/// The byte of the `ATTR` payload at `at`.
+fn bytes_at(bytes: &[u8], at: usize) -> u8 {
+    payload(bytes, Tag::ATTR)[at]
 }

@@ -39,7 +39,8 @@ pub struct AttributeHeader {
     pub flagged: u32,
     /// Triangle slots covered (`S`): the connectivity's triangle ids, then the kept ones.
     pub slots: u32,
-    /// Reserved, 0.
+    /// The first word's low byte is the value encoding (0 raw, 1 quantized: see
+    /// [`AttributeHeader::value_encoding`]); the rest is reserved, 0.
     pub reserved: [u32; 3],
 }
 
@@ -130,13 +131,24 @@ impl AttributeHeader {
         }
     }
 
-    /// The layout of the record for `vertices` container vertices; `None` for an unknown
-    /// component type or sizes beyond the address space.
+    /// The value encoding (FORMAT.md §3.9): the low byte of the first reserved word, 0 raw
+    /// ([`RAW`](super::quantized::RAW)), 1 quantized ([`QUANTIZED`](super::quantized::QUANTIZED)).
+    pub fn value_encoding(&self) -> u8 {
+        self.reserved[0] as u8
+    }
+
+    /// The layout of a record of raw values (value encoding 0) for `vertices` container
+    /// vertices; `None` for an unknown component type or sizes beyond the address space.
     pub fn layout(&self, vertices: u32) -> Option<RecordLayout> {
         let size = ComponentType::from_code(self.component_type)?.size() as u64;
-        let name_end = RECORD_HEADER_LEN as u64 + u64::from(self.name_len);
         let values = (u64::from(vertices) + u64::from(self.extra))
             .checked_mul(u64::from(self.components) * size)?;
+        self.layout_with_values(values)
+    }
+
+    /// The layout of the record when its values part takes `values` bytes.
+    pub fn layout_with_values(&self, values: u64) -> Option<RecordLayout> {
+        let name_end = RECORD_HEADER_LEN as u64 + u64::from(self.name_len);
         let values_end = name_end + values;
         let (flags, rank, entries) = if self.flagged == 0 {
             (0, 0, 0)
@@ -252,4 +264,29 @@ pub fn pack(fields: &[u32], bits: u32) -> Vec<u32> {
 /// Bits needed to store every number up to `max` (0 for `max = 0`).
 pub fn bits_for(max: u32) -> u32 {
     32 - max.leading_zeros()
+}
+
+/// Whether an `ATTR` payload of a container of `vertices` vertices has a record of value
+/// encoding 1 (quantized), walking the records as far as they are well formed.
+pub fn any_quantized(payload: &[u8], vertices: u32) -> bool {
+    let count = if payload.len() >= 4 {
+        le_u32(payload, 0)
+    } else {
+        0
+    };
+    let mut at = 4usize;
+    for _ in 0..count {
+        if payload.len() - at < RECORD_HEADER_LEN {
+            return false;
+        }
+        let h = AttributeHeader::parse(&payload[at..]);
+        if h.value_encoding() != super::quantized::RAW {
+            return true;
+        }
+        match h.layout(vertices) {
+            Some(l) if l.len() <= payload.len() - at => at += l.len(),
+            _ => return false,
+        }
+    }
+    false
 }

@@ -10,6 +10,7 @@ pub mod attributes;
 pub mod layout;
 mod metadata;
 pub mod parts;
+pub mod quantized;
 
 pub use metadata::Metadata;
 
@@ -23,13 +24,20 @@ pub const MAJOR: u16 = 1;
 pub const MINOR: u16 = 1;
 
 /// The minor version a file of these sections (tags and payloads) is written with: 2 with a
-/// position encoding of version 1.2 (`GEOM` encodings 2 to 4), 1 with a section of version
-/// 1.1 (`ATTR`, `PART`), 0 otherwise, so that a file says the oldest version that reads it.
+/// position encoding of version 1.2 (`GEOM` encodings 2 to 4) or an `ATTR` record of value
+/// encoding 1 (quantized), 1 with a section of version 1.1 (`ATTR`, `PART`), 0 otherwise,
+/// so that a file says the oldest version that reads it.
 pub fn minor_for<'a>(sections: impl IntoIterator<Item = (Tag, &'a [u8])>) -> u16 {
+    let sections: Vec<(Tag, &[u8])> = sections.into_iter().collect();
+    let vertices = sections
+        .iter()
+        .find(|(tag, bytes)| *tag == Tag::MESH && bytes.len() >= 4)
+        .map(|(_, bytes)| le_u32(bytes, 0));
     sections
-        .into_iter()
-        .map(|(tag, bytes)| match tag {
+        .iter()
+        .map(|&(tag, bytes)| match tag {
             Tag::GEOM if bytes.len() >= 4 && le_u32(bytes, 0) >= 2 => 2,
+            Tag::ATTR if vertices.is_some_and(|v| attributes::any_quantized(bytes, v)) => 2,
             Tag::ATTR | Tag::PART => 1,
             _ => 0,
         })

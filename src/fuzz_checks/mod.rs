@@ -123,6 +123,9 @@ pub fn container_forged(data: &[u8]) {
         connectivity: kind,
         keep_order: choice & 0x20 != 0,
         position_bits: (choice & 0x40 != 0).then_some(12),
+        // Quantized attribute values (ATTR value encoding 1) with the quantized positions.
+        normal_bits: (choice & 0x40 != 0).then_some(10),
+        texcoord_bits: (choice & 0x40 != 0).then_some(12),
         ..EncodeOptions::default()
     };
     let bytes = encode(&mesh, &options).expect("a generated mesh encodes");
@@ -145,8 +148,8 @@ pub fn container_forged(data: &[u8]) {
     container(&assemble(&sections));
 }
 
-/// Per-corner texture coordinates that break along every third triangle, a per-vertex
-/// custom attribute and two parts: so that forged `ATTR` and `PART` sections are reached.
+/// Per-corner texture coordinates that break along every third triangle, per-vertex normals,
+/// a per-vertex custom attribute and two parts: so that forged `ATTR` and `PART` sections are reached.
 fn with_seams_and_parts(mesh: &mut crate::Mesh) {
     use crate::mesh::{Attribute, Part, Parts, Semantic, Values};
     let corners: Vec<u32> = (0..3 * mesh.triangles.len() as u32)
@@ -155,6 +158,9 @@ fn with_seams_and_parts(mesh: &mut crate::Mesh) {
     let uv: Vec<[f32; 2]> = (0..7).map(|i| [i as f32 / 7.0, 0.5]).collect();
     mesh.attributes
         .push(Attribute::per_corner(Semantic::TexCoord(0), &uv, corners));
+    let normals: Vec<[f32; 3]> = mesh.positions.iter().map(|p| [p[0], p[1], -p[2]]).collect();
+    mesh.attributes
+        .push(Attribute::per_vertex(Semantic::Normal, &normals));
     mesh.attributes.push(Attribute {
         semantic: Semantic::Custom("weight".into()),
         components: 1,

@@ -9,6 +9,7 @@ use crate::error::{Result, Rule};
 use crate::format::attributes::{
     bits_for, AttributeHeader, Seams, NORMALIZED, PER_CORNER, RANK_SPAN, RECORD_HEADER_LEN,
 };
+use crate::format::quantized::{Quantizer, MAX_NORMAL_BITS, MAX_VALUE_BITS, QUANTIZED, RAW};
 use crate::format::{le_f32, le_u32, Tag};
 use crate::mesh::{ComponentType, Semantic};
 use crate::ops::CornerOps;
@@ -27,7 +28,10 @@ pub struct AttributeView<'a> {
     pub normalized: bool,
     /// Given per corner (otherwise per vertex).
     pub per_corner: bool,
+    /// Raw values (value encoding 0); empty when quantized.
     values: &'a [u8],
+    /// Value encoding 1: how the integers map to values, and the packed words.
+    quantized: Option<(Quantizer, LeWords<'a>)>,
     value_count: u32,
     extra: u32,
     flagged: u32,
@@ -58,28 +62,66 @@ impl<'a> AttributeView<'a> {
         self.flagged
     }
 
-    /// Bytes of one value.
+    /// Bytes of one value as the component type stores it (what
+    /// [`AttributeView::value_bytes`] gives for a raw record).
     pub fn value_len(&self) -> usize {
         usize::from(self.components) * self.component_type.size()
     }
 
-    /// The little-endian bytes of value `i`.
+    /// The value encoding of the record (FORMAT.md §3.9): 0 raw, 1 quantized.
+    pub fn value_encoding(&self) -> u8 {
+        if self.quantized.is_some() {
+            QUANTIZED
+        } else {
+            RAW
+        }
+    }
+
+    /// How the values are quantized, for a record of value encoding 1.
+    pub fn quantizer(&self) -> Option<Quantizer> {
+        self.quantized.map(|(q, _)| q)
+    }
+
+    /// The little-endian bytes of value `i` as the file stores them, for a raw record
+    /// (value encoding 0); `None` for a quantized record, whose values are integers of a
+    /// few bits: read them with [`AttributeView::value_f32`].
     ///
     /// # Panics
     /// When `i` is not below [`AttributeView::value_count`].
-    pub fn value_bytes(&self, i: u32) -> &'a [u8] {
+    pub fn value_bytes(&self, i: u32) -> Option<&'a [u8]> {
         assert!(i < self.value_count, "value {i} out of range");
+        if self.quantized.is_some() {
+            return None;
+        }
         let n = self.value_len();
-        &self.values[n * i as usize..n * i as usize + n]
+        Some(&self.values[n * i as usize..n * i as usize + n])
     }
 
-    /// Value `i` as f32 numbers (normalized integers mapped to fractions); the components
-    /// beyond [`AttributeView::components`] are 0.
+    /// The integers of value `i` of a quantized record (`c'` of them: 2 for an octahedral
+    /// normal, else `c`; the rest 0); `None` for a raw record.
+    ///
+    /// # Panics
+    /// When `i` is not below [`AttributeView::value_count`].
+    pub fn value_levels(&self, i: u32) -> Option<[u32; 4]> {
+        assert!(i < self.value_count, "value {i} out of range");
+        let (q, words) = self.quantized.as_ref()?;
+        let mut out = [0; 4];
+        q.levels_at(words, i, &mut out);
+        Some(out)
+    }
+
+    /// Value `i` as f32 numbers (normalized integers mapped to fractions, quantized values
+    /// decoded); the components beyond [`AttributeView::components`] are 0.
     ///
     /// # Panics
     /// When `i` is not below [`AttributeView::value_count`].
     pub fn value_f32(&self, i: u32) -> [f32; 4] {
-        let b = self.value_bytes(i);
+        assert!(i < self.value_count, "value {i} out of range");
+        if let Some((q, words)) = &self.quantized {
+            return q.value_at(words, i);
+        }
+        let n = self.value_len();
+        let b = &self.values[n * i as usize..n * i as usize + n];
         let size = self.component_type.size();
         let mut out = [0.0; 4];
         for (k, x) in out
@@ -227,6 +269,7 @@ pub(super) fn attributes<'a>(
             normalized,
             per_corner: false,
             values,
+            quantized: None,
             value_count: cx.vertices,
             extra: 0,
             flagged: 0,
@@ -328,17 +371,42 @@ fn record<'a>(
     if normalized && !component_type.is_integer() {
         return Err(err(4, "normalized floats".into()));
     }
-    if let Some(k) = h.reserved.iter().position(|&r| r != 0) {
-        return Err(err(20 + 4 * k, "reserved field is not zero".into()));
+    let reserved = [h.reserved[0] & !0xff, h.reserved[1], h.reserved[2]];
+    if let Some(k) = reserved.iter().position(|&r| r != 0) {
+        return Err(err(
+            20 + 4 * k + usize::from(k == 0),
+            "reserved field is not zero".into(),
+        ));
     }
-    let Some(layout) = h.layout(cx.vertices) else {
+    let encoding = h.value_encoding();
+    let quantizer = match encoding {
+        RAW => None,
+        QUANTIZED => Some(quantizer(f, at, i, &h, component_type, cx.vertices)?),
+        _ => {
+            return Err(f.err(
+                at + 20,
+                Rule(46),
+                format!("attribute {i}: unknown value encoding {encoding}"),
+            ))
+        }
+    };
+    let layout = match &quantizer {
+        None => h.layout(cx.vertices),
+        Some(q) => q
+            .values_len(u64::from(cx.vertices) + u64::from(h.extra))
+            .and_then(|n| h.layout_with_values(n)),
+    };
+    let Some(layout) = layout else {
         return Err(err(8, "counts overflow".into()));
     };
     if layout.len() > bytes.len() - at {
-        return Err(err(
-            0,
+        // A quantized record's length depends on its `b` (V46).
+        let rule = if quantizer.is_some() { Rule(46) } else { rule };
+        return Err(f.err(
+            at,
+            rule,
             format!(
-                "{} bytes, the section has {} left",
+                "attribute {i}: {} bytes, the section has {} left",
                 layout.len(),
                 bytes.len() - at
             ),
@@ -385,10 +453,30 @@ fn record<'a>(
             format!("{} triangle slots, the container has {slots}", h.slots),
         ));
     }
-    let values = &bytes[at + layout.values.start..at + layout.values.end];
-    if component_type == ComponentType::F32 {
-        f.expect_finite(at + layout.values.start..at + layout.values.end, rule)?;
-    }
+    let mut values = &bytes[at + layout.values.start..at + layout.values.end];
+    let quantized = match quantizer {
+        None => {
+            if component_type == ComponentType::F32 {
+                f.expect_finite(at + layout.values.start..at + layout.values.end, rule)?;
+            }
+            None
+        }
+        Some(q) => {
+            let words = LeWords(&values[q.header_len()..]);
+            let used = (u64::from(cx.vertices) + u64::from(h.extra))
+                * u64::from(q.fields())
+                * u64::from(q.bits());
+            if used % 32 != 0 && words.at(words.count() - 1) >> (used % 32) != 0 {
+                return Err(f.err(
+                    at + layout.values.end - 4,
+                    Rule(46),
+                    format!("attribute {i}: bits past the last quantized value are not 0"),
+                ));
+            }
+            values = &[];
+            Some((q, words))
+        }
+    };
     let seams = if h.flagged == 0 {
         None
     } else {
@@ -409,6 +497,7 @@ fn record<'a>(
         normalized,
         per_corner,
         values,
+        quantized,
         value_count: cx.vertices + h.extra,
         extra: h.extra,
         flagged: h.flagged,
@@ -416,6 +505,90 @@ fn record<'a>(
         stored_bytes: layout.len() as u64,
     };
     Ok((view, at + layout.values.start, at + layout.len()))
+}
+
+/// V46: the header of the values part of a quantized record at `at`: f32 components only,
+/// `b` in range (1 to 24 for normals, 1 to 30 otherwise), the values part within the
+/// section, a finite `lo` and a finite `size` at least 0.
+fn quantizer(
+    f: &Fields,
+    at: usize,
+    i: u32,
+    h: &AttributeHeader,
+    component_type: ComponentType,
+    vertices: u32,
+) -> Result<Quantizer> {
+    let bytes = f.bytes();
+    let err = |offset: usize, message: String| {
+        f.err(at + offset, Rule(46), format!("attribute {i}: {message}"))
+    };
+    if component_type != ComponentType::F32 {
+        return Err(err(
+            20,
+            format!("quantized values of component type {}", h.component_type),
+        ));
+    }
+    let start = RECORD_HEADER_LEN + usize::from(h.name_len);
+    let left = bytes.len() - at;
+    if start >= left {
+        return Err(err(
+            start.min(left),
+            "no room for the quantized values' bits".into(),
+        ));
+    }
+    let bits = bytes[at + start];
+    let most = if h.semantic == 1 {
+        MAX_NORMAL_BITS
+    } else {
+        MAX_VALUE_BITS
+    };
+    if !(1..=most).contains(&bits) {
+        return Err(err(
+            start,
+            format!("{bits} bits per quantized component, 1 to {most} allowed"),
+        ));
+    }
+    let q = if h.semantic == 1 {
+        Quantizer::Octahedral { bits }
+    } else {
+        let c = usize::from(h.components);
+        let grid_end = start + 1 + 4 * c + 4;
+        if grid_end > left {
+            return Err(err(start, "no room for the quantized values' range".into()));
+        }
+        let mut lo = [0.0f32; 4];
+        for (k, x) in lo.iter_mut().take(c).enumerate() {
+            *x = le_f32(bytes, at + start + 1 + 4 * k);
+        }
+        let size = le_f32(bytes, at + start + 1 + 4 * c);
+        if let Some(k) = lo.iter().position(|x| !x.is_finite()) {
+            return Err(err(start + 1 + 4 * k, format!("lo[{k}] is {}", lo[k])));
+        }
+        if !(size.is_finite() && size >= 0.0) {
+            return Err(err(
+                start + 1 + 4 * c,
+                format!("size {size}: finite and at least 0 needed"),
+            ));
+        }
+        Quantizer::Grid {
+            bits,
+            components: h.components,
+            lo,
+            size,
+        }
+    };
+    let need = q.values_len(u64::from(vertices) + u64::from(h.extra));
+    if need.is_none_or(|n| n > (left - start) as u64) {
+        return Err(err(
+            start,
+            format!(
+                "the quantized values take {} bytes, the section has {} left",
+                need.map_or("too many".into(), |n| n.to_string()),
+                left - start
+            ),
+        ));
+    }
+    Ok(q)
 }
 
 /// V41: `FLAGS` marks `F` triangles of the container and nothing past `S`, `RANK` counts
@@ -497,9 +670,20 @@ fn copies_agree(f: &Fields, a: &AttributeView, values_at: usize, cx: &Context) -
     }
     for p in 0..cx.copies.count() / 2 {
         let (copy, original) = (cx.copies.at(2 * p), cx.copies.at(2 * p + 1));
-        if a.value_bytes(copy) != a.value_bytes(original) {
+        if a.value_bytes(copy) != a.value_bytes(original)
+            || a.value_levels(copy) != a.value_levels(original)
+        {
+            let offset = match a.quantizer() {
+                // The word that holds the copy's first integer.
+                Some(q) => {
+                    q.header_len()
+                        + 4 * (u64::from(copy) * u64::from(q.fields()) * u64::from(q.bits()) / 32)
+                            as usize
+                }
+                None => a.value_len() * copy as usize,
+            };
             return Err(f.err(
-                values_at + a.value_len() * copy as usize,
+                values_at + offset,
                 Rule(42),
                 format!(
                     "{} of vertex copy {copy} differs from its original {original}'s",

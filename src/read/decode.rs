@@ -56,9 +56,19 @@ impl Container<'_> {
             .iter()
             .map(|a| {
                 let mut values = Values::with_capacity(a.component_type, 0);
+                let n = usize::from(a.components);
+                // Raw values as stored; quantized ones (f32 only) as they decode.
+                let mut push = |i: u32| match a.value_bytes(i) {
+                    Some(bytes) => values.push_le(bytes),
+                    None => {
+                        let x = a.value_f32(i);
+                        let bytes: Vec<u8> = x[..n].iter().flat_map(|c| c.to_le_bytes()).collect();
+                        values.push_le(&bytes);
+                    }
+                };
                 let corners = if a.per_corner {
                     for i in 0..a.value_count() {
-                        values.push_le(a.value_bytes(i));
+                        push(i);
                     }
                     let index = slots
                         .iter()
@@ -69,7 +79,7 @@ impl Container<'_> {
                     Some(index)
                 } else {
                     for &v in &order {
-                        values.push_le(a.value_bytes(v));
+                        push(v);
                     }
                     None
                 };

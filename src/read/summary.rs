@@ -191,10 +191,17 @@ impl Container<'_> {
                 name: attribute_name(&a.semantic),
                 binding: if a.per_corner { "corner" } else { "vertex" },
                 format: format!(
-                    "{}x{}{}",
+                    "{}x{}{}{}",
                     format!("{:?}", a.component_type).to_lowercase(),
                     a.components,
-                    if a.normalized { " normalized" } else { "" }
+                    if a.normalized { " normalized" } else { "" },
+                    match a.quantizer() {
+                        Some(crate::format::quantized::Quantizer::Octahedral { bits }) => {
+                            format!(" octahedral {bits}-bit")
+                        }
+                        Some(q) => format!(" quantized {}-bit", q.bits()),
+                        None => String::new(),
+                    }
                 ),
                 values: a.value_count(),
                 extra_values: a.extra_values(),

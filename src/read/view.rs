@@ -397,7 +397,7 @@ impl<'a> Container<'a> {
         if a.per_corner || a.component_type != ComponentType::U8 || a.components != 4 {
             return None;
         }
-        let b = a.value_bytes(v.0);
+        let b = a.value_bytes(v.0)?;
         Some([b[0], b[1], b[2], b[3]])
     }
 

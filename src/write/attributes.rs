@@ -10,7 +10,8 @@ use crate::format::attributes::{
     bits_for, pack, AttributeHeader, NORMALIZED, PER_CORNER, RANK_SPAN,
 };
 use crate::format::parts::PartsHeader;
-use crate::mesh::{Attribute, Mesh, Semantic};
+use crate::format::quantized::{Quantizer, MAX_NORMAL_BITS, MAX_VALUE_BITS, QUANTIZED};
+use crate::mesh::{Attribute, Mesh, Semantic, Values};
 
 /// Every corner of the container: the slot of its triangle, its container vertex and the
 /// input corner (`3·input triangle + k`) it came from, in slot order then corner order.
@@ -70,21 +71,94 @@ pub(super) fn attr_section(
     mesh: &Mesh,
     corners: &Corners,
     input_vertex: &[u32],
+    options: &super::EncodeOptions,
 ) -> Result<Vec<u8>> {
     let mut out = (mesh.attributes.len() as u32).to_le_bytes().to_vec();
     for a in &mesh.attributes {
-        out.extend(record(a, corners, input_vertex)?);
+        out.extend(record(a, corners, input_vertex, quantizer(a, options)?)?);
     }
     Ok(out)
 }
 
+/// How `options` quantize `a` (FORMAT.md §3.9.1): f32 normals octahedral with
+/// `normal_bits`, f32 texture coordinates and custom attributes on a grid of
+/// `texcoord_bits`, f32 colors on a grid of `color_bits`; `None` (raw) for integer
+/// attributes and when the option is not set. The grid covers every value of the attribute.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] for bits out of range (1 to 24 for normals, 1 to 30 otherwise).
+pub(super) fn quantizer(
+    a: &Attribute,
+    options: &super::EncodeOptions,
+) -> Result<Option<Quantizer>> {
+    let Values::F32(values) = &a.values else {
+        return Ok(None);
+    };
+    let (bits, most) = match a.semantic {
+        Semantic::Normal => (options.normal_bits, MAX_NORMAL_BITS),
+        Semantic::TexCoord(_) | Semantic::Custom(_) => (options.texcoord_bits, MAX_VALUE_BITS),
+        Semantic::Color(_) => (options.color_bits, MAX_VALUE_BITS),
+    };
+    let Some(bits) = bits else {
+        return Ok(None);
+    };
+    if !(1..=most).contains(&bits) {
+        return Err(Error::InvalidArgument(format!(
+            "{} quantized to {bits} bits: 1 to {most} allowed",
+            a.semantic
+        )));
+    }
+    let n = usize::from(a.components).max(1);
+    Ok(Some(match a.semantic {
+        Semantic::Normal if a.components == 3 => Quantizer::Octahedral { bits },
+        _ => Quantizer::grid(a.components, bits, values.chunks_exact(n)),
+    }))
+}
+
+/// The key of value `i` of `a` as the record stores it: its bytes (raw), or its integers
+/// as little-endian u32s (quantized). Equal keys are one value.
+fn key(a: &Attribute, q: Option<&Quantizer>, i: usize, out: &mut Vec<u8>) {
+    match (q, &a.values) {
+        (Some(q), Values::F32(values)) => {
+            let n = usize::from(a.components);
+            let mut levels = [0u32; 4];
+            q.quantize(&values[n * i..n * i + n], &mut levels);
+            for x in &levels[..q.fields() as usize] {
+                out.extend_from_slice(&x.to_le_bytes());
+            }
+        }
+        _ => a.value_bytes(i, out),
+    }
+}
+
+/// The values part of a quantized record from the keys of its values (u32 integers, `c'`
+/// per value): the header, then the integers packed in `b` bits.
+fn packed_values(q: &Quantizer, keys: &[u8]) -> Vec<u8> {
+    let levels: Vec<u32> = keys
+        .chunks_exact(4)
+        .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+        .collect();
+    let mut out = Vec::new();
+    q.write_header(&mut out);
+    for w in pack(&levels, u32::from(q.bits())) {
+        out.extend_from_slice(&w.to_le_bytes());
+    }
+    out
+}
+
 /// One attribute's record. Per vertex: the value of each container vertex's input vertex.
 /// Per corner: each container vertex takes the value most of its corners have; the other
-/// values its corners have (equal bytes, one value) are its extra values, and the triangles
-/// with a corner on an extra value are flagged.
-fn record(a: &Attribute, corners: &Corners, input_vertex: &[u32]) -> Result<Vec<u8>> {
+/// values its corners have (equal bytes, or equal integers when quantized: one value) are
+/// its extra values, and the triangles with a corner on an extra value are flagged.
+fn record(
+    a: &Attribute,
+    corners: &Corners,
+    input_vertex: &[u32],
+    quantizer: Option<Quantizer>,
+) -> Result<Vec<u8>> {
     let m = input_vertex.len();
     let n = usize::from(a.components);
+    let q = quantizer.as_ref();
     let (semantic, set) = AttributeHeader::codes(&a.semantic);
     let name = match &a.semantic {
         Semantic::Custom(name) => name.as_bytes(),
@@ -106,22 +180,30 @@ fn record(a: &Attribute, corners: &Corners, input_vertex: &[u32]) -> Result<Vec<
         slots: corners.slots,
         ..AttributeHeader::default()
     };
+    if q.is_some() {
+        header.reserved[0] = u32::from(QUANTIZED);
+    }
+    let finish = |values: &[u8]| match q {
+        Some(q) => packed_values(q, values),
+        None => values.to_vec(),
+    };
     let mut values = Vec::new();
     let Some(index) = &a.corners else {
         for &v in input_vertex {
-            a.value_bytes(v as usize, &mut values);
+            key(a, q, v as usize, &mut values);
         }
-        return Ok(assemble(&header, name, &values, &[], &[], &[]));
+        return Ok(assemble(&header, name, &finish(&values), &[], &[], &[]));
     };
     header.flags |= PER_CORNER;
 
-    // One id per distinct value (by bytes), so that equal values under two indices agree.
+    // One id per distinct value (by bytes, or by integers when quantized), so that equal
+    // values under two indices agree.
     let mut ids: HashMap<Vec<u8>, u32> = HashMap::new();
     let mut canonical = Vec::with_capacity(a.value_count());
     let mut first_of = Vec::new();
     for i in 0..a.value_count() {
         let mut bytes = Vec::with_capacity(n * 4);
-        a.value_bytes(i, &mut bytes);
+        key(a, q, i, &mut bytes);
         let next = ids.len() as u32;
         let id = *ids.entry(bytes).or_insert(next);
         if id == next {
@@ -167,16 +249,20 @@ fn record(a: &Attribute, corners: &Corners, input_vertex: &[u32]) -> Result<Vec<
         .ok()
         .filter(|&e| u64::from(e) + m as u64 <= u64::from(u32::MAX))
         .ok_or_else(|| Error::Unsupported(format!("{} attribute: too many values", a.semantic)))?;
-    let zero = vec![0u8; n * a.values.component_type().size()];
+    let zero = match q {
+        Some(q) => vec![0u8; 4 * q.fields() as usize],
+        None => vec![0u8; n * a.values.component_type().size()],
+    };
     for &b in &base {
         match b {
             u32::MAX => values.extend_from_slice(&zero),
-            id => a.value_bytes(first_of[id as usize], &mut values),
+            id => key(a, q, first_of[id as usize], &mut values),
         }
     }
     for &(_, id) in &extras {
-        a.value_bytes(first_of[id as usize], &mut values);
+        key(a, q, first_of[id as usize], &mut values);
     }
+    let values = finish(&values);
 
     let mut flags = vec![0u32; corners.slots.div_ceil(32) as usize];
     let mut entries = Vec::new();

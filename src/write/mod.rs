@@ -60,6 +60,15 @@ pub struct EncodeOptions {
     /// fastest to write and to open; from level 1 they are coded: predicted and range coded
     /// for Edgebreaker, in random-access blocks for the other kinds.
     pub level: u8,
+    /// f32 normals stored octahedral, two integers of this many bits (1 to 24) per normal
+    /// (FORMAT.md §3.9.1): lossy; `None` keeps the f32s exactly.
+    pub normal_bits: Option<u8>,
+    /// f32 texture coordinates and custom attributes on a grid of this many bits per
+    /// component (1 to 30) over their range, within half a step (lossy); `None` keeps them.
+    pub texcoord_bits: Option<u8>,
+    /// f32 colors on a grid of this many bits per component (1 to 30); integer colors are
+    /// always stored as they are. `None` keeps them.
+    pub color_bits: Option<u8>,
     /// The metadata to store.
     pub metadata: Metadata,
 }
@@ -74,12 +83,41 @@ impl Default for EncodeOptions {
             keep_order: false,
             position_bits: None,
             level: DEFAULT_LEVEL,
+            normal_bits: None,
+            texcoord_bits: None,
+            color_bits: None,
             metadata: Metadata {
                 generator: format!("lrmesh {}", env!("CARGO_PKG_VERSION")),
                 ..Metadata::default()
             },
         }
     }
+}
+
+/// `mesh` with the values of the attributes `options` quantize replaced by what decoding
+/// the container gives back (FORMAT.md §3.9.1): what [`encode`] then
+/// [`Container::to_mesh`](crate::Container::to_mesh) return, up to the merging of values
+/// equal after quantization. The other attributes are unchanged.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] for quantization bits out of range.
+pub fn dequantized(mesh: &Mesh, options: &EncodeOptions) -> Result<Mesh> {
+    let mut out = mesh.clone();
+    for a in &mut out.attributes {
+        let Some(q) = attributes::quantizer(a, options)? else {
+            continue;
+        };
+        let n = usize::from(a.components);
+        if let crate::mesh::Values::F32(values) = &mut a.values {
+            let mut levels = [0u32; 4];
+            for v in values.chunks_exact_mut(n.max(1)) {
+                q.quantize(v, &mut levels);
+                let back = q.dequantize(&levels);
+                v.copy_from_slice(&back[..n]);
+            }
+        }
+    }
+    Ok(out)
 }
 
 /// A connectivity already built, so that encoding builds nothing twice.
@@ -238,7 +276,7 @@ fn sections(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<Se
     if !mesh.attributes.is_empty() || mesh.parts.is_some() {
         let corners = attributes::Corners::new(mesh, &encoded, kept, &primary)?;
         if !mesh.attributes.is_empty() {
-            let payload = attributes::attr_section(mesh, &corners, &encoded.input_vertex)?;
+            let payload = attributes::attr_section(mesh, &corners, &encoded.input_vertex, options)?;
             sections.push((Tag::ATTR, Flags::NONE, payload));
         }
         if let Some(payload) = attributes::part_section(mesh, &corners)? {

@@ -33,6 +33,18 @@ pub struct Args {
     #[arg(long, visible_alias = "quantize", value_name = "BITS",
           value_parser = clap::value_parser!(u8).range(1..=30))]
     quantize_position: Option<u8>,
+    /// Store f32 normals octahedral, two integers of this many bits (1 to 24) per normal:
+    /// lossy. Without it, normals are kept exactly.
+    #[arg(long, value_name = "BITS", value_parser = clap::value_parser!(u8).range(1..=24))]
+    quantize_normal: Option<u8>,
+    /// Store f32 texture coordinates and custom attributes on a grid of this many bits per
+    /// component (1 to 30) over their range: lossy, each within half a grid step.
+    #[arg(long, value_name = "BITS", value_parser = clap::value_parser!(u8).range(1..=30))]
+    quantize_texcoord: Option<u8>,
+    /// Store f32 colors on a grid of this many bits per component (1 to 30): lossy. Integer
+    /// colors are always kept exactly.
+    #[arg(long, value_name = "BITS", value_parser = clap::value_parser!(u8).range(1..=30))]
+    quantize_color: Option<u8>,
     /// Compression level, 0 to 9: 0 stores positions raw (f32, or 16-bit words: the fastest
     /// to write and to open); from 1, Edgebreaker predicts them and range codes the residuals,
     /// and the random-access kinds store positions in blocks (exact ones when that is smaller
@@ -86,6 +98,9 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
         periods: compact_periods(args.period),
         keep_order: args.keep_order,
         position_bits: args.quantize_position,
+        normal_bits: args.quantize_normal,
+        texcoord_bits: args.quantize_texcoord,
+        color_bits: args.quantize_color,
         level: args.level,
         ..EncodeOptions::default()
     };
@@ -133,6 +148,15 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
     );
     if let Some(bits) = args.quantize_position {
         say!("positions quantized to {bits} bits: lossy");
+    }
+    for (what, bits) in [
+        ("normals", args.quantize_normal),
+        ("texture coordinates", args.quantize_texcoord),
+        ("colors", args.quantize_color),
+    ] {
+        if let Some(bits) = bits {
+            say!("f32 {what} quantized to {bits} bits: lossy");
+        }
     }
     Ok(())
 }
