@@ -39,11 +39,14 @@ const VECTORS: [&str; 7] = [
 const OBJ_VECTORS: [&str; 1] = ["seamed_cube"];
 
 /// Sources also written with quantized positions (`NAME.q12*.lrm`: a 12-bit grid, GEOM
-/// encodings 2 and 4), each container with a listing of its decoded positions.
+/// encodings 2 and 4) and attributes (normals on 10 bits, texture coordinates on 12: ATTR
+/// value encoding 1), each container with a listing of its decoded positions and values.
 const QUANTIZED_VECTORS: [&str; 2] = ["torus_with_t0", "seamed_cube"];
 
-/// The grid of the quantized vectors.
+/// The grid of the quantized vectors' positions and texture coordinates.
 const QUANTIZED_BITS: u8 = 12;
+/// The bits of the quantized vectors' octahedral normals.
+const QUANTIZED_NORMAL_BITS: u8 = 10;
 
 fn dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("spec/vectors")
@@ -55,6 +58,8 @@ fn options(connectivity: Connectivity, position_bits: Option<u8>) -> EncodeOptio
         connectivity,
         keep_order: true,
         position_bits,
+        normal_bits: position_bits.map(|_| QUANTIZED_NORMAL_BITS),
+        texcoord_bits: position_bits,
         metadata: Metadata {
             generator: "lrmesh test vectors".into(),
             ..Metadata::default()
@@ -226,6 +231,52 @@ fn positions_listing(name: &str, bytes: &[u8]) -> String {
     out
 }
 
+/// For a container with quantized attribute values (ATTR value encoding 1), one line per
+/// value of each such attribute: the attribute's index, the value's index, its stored
+/// integers, then its decoded components as the hex bits of their f32s. `None` without one.
+fn values_listing(name: &str, bytes: &[u8]) -> Option<String> {
+    let file = open(bytes, &Limits::default()).unwrap();
+    let quantized: Vec<(usize, &lrmesh::read::attributes::AttributeView)> = file
+        .attributes()
+        .iter()
+        .enumerate()
+        .filter(|(_, a)| a.quantizer().is_some())
+        .collect();
+    if quantized.is_empty() {
+        return None;
+    }
+    let mut out = String::new();
+    writeln!(
+        out,
+        "# lrmesh test vector {name}: the decoded values of every quantized attribute"
+    )
+    .unwrap();
+    writeln!(out, "# {} quantized attributes", quantized.len()).unwrap();
+    writeln!(
+        out,
+        "# attribute value integers... components... (f32 bits)"
+    )
+    .unwrap();
+    for (index, a) in quantized {
+        let integers = if a.semantic == lrmesh::mesh::Semantic::Normal {
+            2
+        } else {
+            a.components as usize
+        };
+        for i in 0..a.value_count() {
+            let q = a.value_levels(i).unwrap();
+            let x = a.value_f32(i);
+            let q: Vec<String> = q[..integers].iter().map(|q| q.to_string()).collect();
+            let x: Vec<String> = x[..a.components as usize]
+                .iter()
+                .map(|x| format!("{:08x}", x.to_bits()))
+                .collect();
+            writeln!(out, "{index} {i} {} {}", q.join(" "), x.join(" ")).unwrap();
+        }
+    }
+    Some(out)
+}
+
 #[test]
 fn vectors_match() {
     let regenerate = std::env::var_os("LRMESH_REGENERATE_VECTORS").is_some();
@@ -254,6 +305,7 @@ fn vectors_match() {
             let txt = dir().join(format!("{stem}.txt"));
             let attributes_txt = dir().join(format!("{stem}.attributes.txt"));
             let positions_txt = dir().join(format!("{stem}.positions.txt"));
+            let values_txt = dir().join(format!("{stem}.values.txt"));
             if regenerate {
                 std::fs::write(&lrm, &bytes).unwrap();
                 std::fs::write(&txt, listing(name, &bytes)).unwrap();
@@ -262,6 +314,9 @@ fn vectors_match() {
                 }
                 if bits.is_some() {
                     std::fs::write(&positions_txt, positions_listing(name, &bytes)).unwrap();
+                }
+                if let Some(v) = values_listing(name, &bytes) {
+                    std::fs::write(&values_txt, v).unwrap();
                 }
             }
             let stored = std::fs::read(&lrm).unwrap();
@@ -299,7 +354,15 @@ fn vectors_match() {
                     }
                 }
                 mesh.positions = back.positions.clone();
+                // Quantized attribute values come back as `dequantized` says, and as listed.
+                mesh =
+                    lrmesh::write::dequantized(&mesh, &options(connectivity, Some(bits))).unwrap();
             }
+            assert_eq!(
+                values_listing(name, &stored),
+                std::fs::read_to_string(&values_txt).ok(),
+                "{stem}: decoded attribute values differ"
+            );
             assert_eq!(back.positions, mesh.positions, "{name}");
             assert_same_up_to_rotation(&back.triangles, &mesh.triangles, name);
             lrmesh::fuzz_checks::assert_same_in_order(&back, &mesh);
