@@ -192,14 +192,6 @@ fn middle_float(values: &mut [f64]) -> f64 {
     }
 }
 
-/// The largest value minus the smallest.
-fn range_of(values: &[i64]) -> i64 {
-    let (lo, hi) = values
-        .iter()
-        .fold((i64::MAX, i64::MIN), |(lo, hi), &x| (lo.min(x), hi.max(x)));
-    hi - lo
-}
-
 /// What went wrong decoding, and where in the stream.
 struct Fail {
     at: u64,
@@ -228,44 +220,153 @@ fn bits(r: i64) -> u32 {
     64 - r.unsigned_abs().leading_zeros()
 }
 
-/// Codes grid levels `q` (all of them, in coding order) with `plan`; the decoder fills `q`.
-/// With `select`, the encoder may choose one parallelogram of several (GEOMETRY.md §3.3).
-fn code_grid<B: Bits>(
+/// What is predicted: grid levels or f32 bits. Both are coded as integers, the *images* of
+/// the coordinates (a level, or the ordered integer of an f32), so that one coder serves
+/// both; they differ in how a parallelogram is computed and how a value becomes an image.
+trait Domain {
+    /// A parallelogram's value on one axis, before it becomes an image.
+    type Value: Copy;
+    /// The image of coordinate `k` of vertex `x` (garbage in the decoder, which ignores it).
+    fn image(&self, x: usize, k: usize) -> i64;
+    /// The image the origin predicts.
+    fn origin(&self) -> i64;
+    /// Parallelogram `a + b − o` on axis `k`.
+    fn parallelogram(&self, abo: [usize; 3], k: usize) -> Self::Value;
+    /// The middle of several parallelograms' values (reorders them).
+    fn middle(values: &mut [Self::Value]) -> Self::Value;
+    /// The image of a value, for the spread: monotone, not clamped.
+    fn spread_image(v: Self::Value) -> i64;
+    /// The image a predicted value gives.
+    fn base(&self, v: Self::Value) -> i64;
+    /// The largest class a residual may have.
+    fn max_class(&self) -> u32;
+    /// What a residual above [`Domain::max_class`] is called.
+    fn too_long(&self) -> &'static str;
+    /// Stores image `image` as coordinate `k` of vertex `x`, or says why it is invalid.
+    fn set(&mut self, x: usize, k: usize, image: i64) -> std::result::Result<(), String>;
+}
+
+/// Grid levels (encoding 2).
+struct Levels<'q> {
+    q: &'q mut [[u32; 3]],
+    max: u32,
+}
+
+impl Domain for Levels<'_> {
+    type Value = i64;
+    fn image(&self, x: usize, k: usize) -> i64 {
+        self.q[x][k] as i64
+    }
+    fn origin(&self) -> i64 {
+        0
+    }
+    fn parallelogram(&self, [a, b, o]: [usize; 3], k: usize) -> i64 {
+        self.q[a][k] as i64 + self.q[b][k] as i64 - self.q[o][k] as i64
+    }
+    fn middle(values: &mut [i64]) -> i64 {
+        middle_level(values)
+    }
+    fn spread_image(v: i64) -> i64 {
+        v
+    }
+    fn base(&self, v: i64) -> i64 {
+        v.clamp(0, self.max as i64)
+    }
+    fn max_class(&self) -> u32 {
+        32 - self.max.leading_zeros()
+    }
+    fn too_long(&self) -> &'static str {
+        "a residual longer than the grid's bits"
+    }
+    fn set(&mut self, x: usize, k: usize, image: i64) -> std::result::Result<(), String> {
+        let max = self.max;
+        if !(0..=max as i64).contains(&image) {
+            return Err(format!("level {image} outside the grid 0..={max}"));
+        }
+        self.q[x][k] = image as u32;
+        Ok(())
+    }
+}
+
+/// Exact f32 positions (encoding 3), predicted in binary64.
+struct Floats<'p> {
+    p: &'p mut [[f32; 3]],
+}
+
+impl Domain for Floats<'_> {
+    type Value = f64;
+    fn image(&self, x: usize, k: usize) -> i64 {
+        ordered(self.p[x][k]) as i64
+    }
+    fn origin(&self) -> i64 {
+        ordered(0.0) as i64
+    }
+    fn parallelogram(&self, [a, b, o]: [usize; 3], k: usize) -> f64 {
+        (self.p[a][k] as f64 + self.p[b][k] as f64) - self.p[o][k] as f64
+    }
+    fn middle(values: &mut [f64]) -> f64 {
+        middle_float(values)
+    }
+    fn spread_image(v: f64) -> i64 {
+        ordered(v as f32) as i64
+    }
+    fn base(&self, v: f64) -> i64 {
+        ordered(v as f32) as i64
+    }
+    fn max_class(&self) -> u32 {
+        32
+    }
+    fn too_long(&self) -> &'static str {
+        "a residual longer than 32 bits"
+    }
+    fn set(&mut self, x: usize, k: usize, image: i64) -> std::result::Result<(), String> {
+        self.p[x][k] = u32::try_from(image)
+            .ok()
+            .map(from_ordered)
+            .filter(|f| f.is_finite())
+            .ok_or("the residual gives no finite f32")?;
+        Ok(())
+    }
+}
+
+/// Codes every coordinate of `d` in coding order with `plan`; the decoder fills `d`. With
+/// `select`, the encoder may choose one parallelogram of several (GEOMETRY.md §3.3).
+fn code<B: Bits, D: Domain>(
     b: &mut B,
     plan: &Plan,
     (v, o): (&[u32], &[u32]),
-    q: &mut [[u32; 3]],
-    max: u32,
+    d: &mut D,
     select: bool,
 ) -> std::result::Result<(), Fail> {
-    let mut models = Residuals::new(32 - max.leading_zeros());
-    let mut values: Vec<[i64; 3]> = Vec::new();
-    let mut scratch: Vec<i64> = Vec::new();
-    let clamp = |x: i64| x.clamp(0, max as i64);
+    let mut models = Residuals::new(d.max_class());
+    let mut values: Vec<[D::Value; 3]> = Vec::new();
+    let mut scratch: Vec<D::Value> = Vec::new();
     let mut found = Vec::new();
     for (i, &x) in plan.order().iter().enumerate() {
         let x = x as usize;
-        let predictor = plan.predictor(i, &mut found);
-        let (predicted, kind): ([i64; 3], usize) = match predictor {
+        let (base, kind): ([i64; 3], usize) = match plan.predictor(i, &mut found) {
             Predictor::Parallelograms(corners) => {
                 values.clear();
                 values.extend(corners.iter().map(|&c| {
-                    let [a, bb, oo] = parallelogram(v, o, c);
-                    [0, 1, 2].map(|k| q[a][k] as i64 + q[bb][k] as i64 - q[oo][k] as i64)
+                    let abo = parallelogram(v, o, c);
+                    [0, 1, 2].map(|k| d.parallelogram(abo, k))
                 }));
                 let mut spread = 0u64;
                 let middle = [0, 1, 2].map(|k| {
                     scratch.clear();
                     scratch.extend(values.iter().map(|p| p[k]));
-                    spread += range_of(&scratch) as u64;
-                    clamp(middle_level(&mut scratch))
+                    let images = scratch.iter().map(|&v| D::spread_image(v));
+                    let (lo, hi) =
+                        images.fold((i64::MAX, i64::MIN), |(lo, hi), x| (lo.min(x), hi.max(x)));
+                    spread += (hi - lo) as u64;
+                    d.base(D::middle(&mut scratch))
                 });
                 let n = values.len();
                 let wanted = if select && n > 1 {
-                    let actual = q[x].map(|x| x as i64);
+                    let actual = [0, 1, 2].map(|k| d.image(x, k));
                     choose(
                         |j| {
-                            let p = j.map_or(middle, |j| values[j].map(clamp));
+                            let p = j.map_or(middle, |j| values[j].map(|v| d.base(v)));
                             (0..3).map(|k| bits(actual[k] - p[k])).sum()
                         },
                         n,
@@ -279,116 +380,23 @@ fn code_grid<B: Bits>(
                     0
                 } {
                     0 => (middle, kind(n, spread)),
-                    j => (values[j - 1].map(clamp), KIND_CHOSEN),
+                    j => (values[j - 1].map(|v| d.base(v)), KIND_CHOSEN),
                 }
             }
-            Predictor::Copy(u) => (q[u as usize].map(|x| x as i64), KIND_COPY),
-            Predictor::Origin => ([0; 3], KIND_COPY),
+            Predictor::Copy(u) => ([0, 1, 2].map(|k| d.image(u as usize, k)), KIND_COPY),
+            Predictor::Origin => ([d.origin(); 3], KIND_COPY),
         };
-        for k in 0..3 {
-            let r = q[x][k] as i64 - predicted[k];
+        for (k, base) in base.into_iter().enumerate() {
+            let r = d.image(x, k) - base;
             let at = b.offset();
             let r = models.code(b, kind, k, r).ok_or_else(|| Fail {
                 at,
-                message: format!("vertex {x}: a residual longer than the grid's bits"),
+                message: format!("vertex {x}: {}", d.too_long()),
             })?;
-            let value = predicted[k] + r;
-            if !(0..=max as i64).contains(&value) {
-                return Err(Fail {
-                    at,
-                    message: format!("vertex {x}: level {value} outside the grid 0..={max}"),
-                });
-            }
-            q[x][k] = value as u32;
-        }
-        if b.overrun() {
-            return Err(Fail {
-                at: b.offset(),
-                message: format!("the stream ends before vertex {x}"),
-            });
-        }
-    }
-    Ok(())
-}
-
-/// Codes f32 positions `p` exactly with `plan`; the decoder fills `p`. `select` as for
-/// [`code_grid`].
-fn code_f32<B: Bits>(
-    b: &mut B,
-    plan: &Plan,
-    (v, o): (&[u32], &[u32]),
-    p: &mut [[f32; 3]],
-    select: bool,
-) -> std::result::Result<(), Fail> {
-    let mut models = Residuals::new(32);
-    let mut values: Vec<[f64; 3]> = Vec::new();
-    let mut scratch: Vec<f64> = Vec::new();
-    let mut found = Vec::new();
-    for (i, &x) in plan.order().iter().enumerate() {
-        let x = x as usize;
-        let predictor = plan.predictor(i, &mut found);
-        let (predicted, kind): ([f32; 3], usize) = match predictor {
-            Predictor::Parallelograms(corners) => {
-                values.clear();
-                values.extend(corners.iter().map(|&c| {
-                    let [a, bb, oo] = parallelogram(v, o, c);
-                    [0, 1, 2].map(|k| (p[a][k] as f64 + p[bb][k] as f64) - p[oo][k] as f64)
-                }));
-                let mut spread = 0u64;
-                let middle = [0, 1, 2].map(|k| {
-                    scratch.clear();
-                    scratch.extend(values.iter().map(|p| p[k]));
-                    let (lo, hi) = scratch
-                        .iter()
-                        .fold((f64::MAX, f64::MIN), |(lo, hi), &x| (lo.min(x), hi.max(x)));
-                    spread += (ordered(hi as f32) - ordered(lo as f32)) as u64;
-                    middle_float(&mut scratch) as f32
-                });
-                let n = values.len();
-                let wanted = if select && n > 1 {
-                    let actual = p[x].map(ordered);
-                    choose(
-                        |j| {
-                            let e = j.map_or(middle, |j| values[j].map(|x| x as f32));
-                            (0..3)
-                                .map(|k| bits(actual[k] as i64 - ordered(e[k]) as i64))
-                                .sum()
-                        },
-                        n,
-                    )
-                } else {
-                    0
-                };
-                match if n > 1 {
-                    models.choice(b, n, wanted)
-                } else {
-                    0
-                } {
-                    0 => (middle, kind(n, spread)),
-                    j => (values[j - 1].map(|x| x as f32), KIND_CHOSEN),
-                }
-            }
-            Predictor::Copy(u) => (p[u as usize], KIND_COPY),
-            Predictor::Origin => ([0.0; 3], KIND_COPY),
-        };
-        for k in 0..3 {
-            let base = ordered(predicted[k]) as i64;
-            let r = ordered(p[x][k]) as i64 - base;
-            let at = b.offset();
-            let r = models.code(b, kind, k, r).ok_or_else(|| Fail {
+            d.set(x, k, base + r).map_err(|m| Fail {
                 at,
-                message: format!("vertex {x}: a residual longer than 32 bits"),
+                message: format!("vertex {x}: {m}"),
             })?;
-            let value = base + r;
-            let x_k = u32::try_from(value)
-                .ok()
-                .map(from_ordered)
-                .filter(|f| f.is_finite())
-                .ok_or_else(|| Fail {
-                    at,
-                    message: format!("vertex {x}: the residual gives no finite f32"),
-                })?;
-            p[x][k] = x_k;
         }
         if b.overrun() {
             return Err(Fail {
@@ -418,7 +426,11 @@ pub(crate) fn encode_grid(
     let tables = (table.v_table(), table.o_table());
     let mut coded = |select| {
         let mut enc = Encoder::new();
-        code_grid(&mut enc, &plan, tables, &mut q, grid.max_level(), select)
+        let mut levels = Levels {
+            q: &mut q,
+            max: grid.max_level(),
+        };
+        code(&mut enc, &plan, tables, &mut levels, select)
             .map(|()| enc.finish())
             .map_err(internal)
     };
@@ -443,7 +455,7 @@ pub(crate) fn encode_f32(
     let tables = (table.v_table(), table.o_table());
     let mut coded = |select| {
         let mut enc = Encoder::new();
-        code_f32(&mut enc, &plan, tables, &mut p, select)
+        code(&mut enc, &plan, tables, &mut Floats { p: &mut p }, select)
             .map(|()| enc.finish())
             .map_err(internal)
     };
@@ -497,12 +509,16 @@ pub(crate) fn decode_section<'a>(
     let positions = match grid {
         Some(grid) => {
             let mut q = vec![[0u32; 3]; m];
-            code_grid(&mut dec, &plan, tables, &mut q, grid.max_level(), false).map_err(fail)?;
+            let mut levels = Levels {
+                q: &mut q,
+                max: grid.max_level(),
+            };
+            code(&mut dec, &plan, tables, &mut levels, false).map_err(fail)?;
             q.iter().map(|&q| grid.dequantize(q)).collect()
         }
         None => {
             let mut p = vec![[0f32; 3]; m];
-            code_f32(&mut dec, &plan, tables, &mut p, false).map_err(fail)?;
+            code(&mut dec, &plan, tables, &mut Floats { p: &mut p }, false).map_err(fail)?;
             p
         }
     };
