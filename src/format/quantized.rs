@@ -4,6 +4,7 @@
 //! the reader; every formula is the spec's, in binary64.
 
 use super::attributes::packed;
+use crate::geometry::{bounding_cube, from_level, to_level};
 use crate::words::Words;
 
 /// Value encoding 0: the values as stored, `c` components of the component type each.
@@ -42,30 +43,7 @@ impl Quantizer {
     /// their minimum per component, `size` their largest extent rounded up to an f32 (all 0
     /// without values), as for positions (FORMAT.md §3.3.1).
     pub fn grid<'v>(components: u8, bits: u8, values: impl IntoIterator<Item = &'v [f32]>) -> Self {
-        let c = usize::from(components);
-        let mut lo = [f32::MAX; 4];
-        let mut hi = [f32::MIN; 4];
-        let mut any = false;
-        for v in values {
-            any = true;
-            for k in 0..c {
-                lo[k] = lo[k].min(v[k]);
-                hi[k] = hi[k].max(v[k]);
-            }
-        }
-        if !any {
-            (lo, hi) = ([0.0; 4], [0.0; 4]);
-        }
-        for k in c..4 {
-            (lo[k], hi[k]) = (0.0, 0.0);
-        }
-        let extent = (0..c)
-            .map(|k| hi[k] as f64 - lo[k] as f64)
-            .fold(0.0, f64::max);
-        let mut size = extent as f32;
-        if (size as f64) < extent {
-            size = f32::from_bits(size.to_bits() + 1).min(f32::MAX);
-        }
+        let (lo, size) = bounding_cube(usize::from(components), values);
         Quantizer::Grid {
             bits,
             components,
@@ -133,16 +111,9 @@ impl Quantizer {
                 size,
                 ..
             } => {
-                let s = size as f64;
-                let max = self.max_level() as f64;
+                let max = self.max_level();
                 for k in 0..usize::from(components) {
-                    out[k] = if s > 0.0 {
-                        ((value[k] as f64 - lo[k] as f64) / s * max)
-                            .round()
-                            .clamp(0.0, max) as u32
-                    } else {
-                        0
-                    };
+                    out[k] = to_level(value[k], lo[k], size, max);
                 }
             }
         }
@@ -161,10 +132,10 @@ impl Quantizer {
                 size,
                 ..
             } => {
-                let max = self.max_level() as f64;
+                let max = self.max_level();
                 let mut out = [0.0; 4];
                 for k in 0..usize::from(components) {
-                    out[k] = (lo[k] as f64 + (levels[k] as f64 / max) * size as f64) as f32;
+                    out[k] = from_level(levels[k], lo[k], size, max);
                 }
                 out
             }
