@@ -12,6 +12,7 @@ pub use gltf::import_gltf;
 pub use obj::import_obj;
 pub use round_trip::{
     assert_same_in_order, assert_same_up_to_order, rotated, round_trip, round_trip_every_kind,
+    round_trip_every_kind_with,
 };
 
 use crate::io::{read_mesh_bytes, MeshFormat, ReadOptions};
