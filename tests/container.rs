@@ -3,7 +3,9 @@
 
 mod common;
 
-use common::{check_against_table, corpus_dir, forge_fields, sections_of};
+use common::{
+    assert_within_half_a_step, check_against_table, corpus_dir, forge_fields, sections_of,
+};
 use lrmesh::fuzz_checks::{assert_same_in_order, assert_same_up_to_order, rotated};
 use lrmesh::generate::{self, Rng};
 use lrmesh::io::{read_mesh, ReadOptions};
@@ -250,19 +252,12 @@ fn quantized_positions_are_within_half_a_step() {
                 let view = open(&bytes, &Limits::default()).unwrap();
                 assert!(view.is_quantized());
                 let back = view.to_mesh();
-                let step = lrmesh::geometry::Grid::of(mesh.positions.iter().copied(), bits).step();
-                let mut worst = 0.0f64;
-                for (p, q) in back.positions.iter().zip(&mesh.positions) {
-                    for i in 0..3 {
-                        let error = (p[i] as f64 - q[i] as f64).abs();
-                        let rounding = p[i].abs() as f64 * f32::EPSILON as f64;
-                        assert!(
-                            error <= step / 2.0 + rounding,
-                            "{connectivity:?} {bits} bits level {level}: {p:?} for {q:?}, step {step}"
-                        );
-                        worst = worst.max(error / step);
-                    }
-                }
+                let worst = assert_within_half_a_step(
+                    &back.positions,
+                    &mesh.positions,
+                    bits,
+                    &format!("{connectivity:?} {bits} bits level {level}"),
+                );
                 // The bound is tight: some coordinate is more than a third of a step off.
                 if bits < 20 {
                     assert!(worst > 0.33, "{connectivity:?} {bits}: worst {worst}");

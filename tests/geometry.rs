@@ -4,9 +4,8 @@
 
 mod common;
 
-use common::{corpus_dir, torus_with_everything};
+use common::{assert_within_half_a_step, corpus_dir, torus_with_everything};
 use lrmesh::generate::{self, Rng};
-use lrmesh::geometry::Grid;
 use lrmesh::read::{open, Limits};
 use lrmesh::write::{encode, Connectivity, EncodeOptions};
 use lrmesh::Mesh;
@@ -43,20 +42,6 @@ fn assert_exact(got: &[[f32; 3]], want: &[[f32; 3]], what: &str) {
     let bits =
         |p: &[[f32; 3]]| -> Vec<[u32; 3]> { p.iter().map(|p| p.map(f32::to_bits)).collect() };
     assert_eq!(bits(got), bits(want), "{what}");
-}
-
-fn assert_within_half_a_step(got: &[[f32; 3]], want: &[[f32; 3]], bits: u8, what: &str) {
-    let step = Grid::of(want.iter().copied(), bits).step();
-    for (p, q) in got.iter().zip(want) {
-        for k in 0..3 {
-            let error = (p[k] as f64 - q[k] as f64).abs();
-            let rounding = p[k].abs() as f64 * f32::EPSILON as f64;
-            assert!(
-                error <= step / 2.0 + rounding,
-                "{what}: {p:?} for {q:?}, step {step}"
-            );
-        }
-    }
 }
 
 /// Positions that stress the float coder: signed zeros, subnormals, huge and tiny values,
@@ -175,7 +160,9 @@ proptest! {
         let got = round_trip(&mesh, KINDS[kind], bits, level);
         match bits {
             None => assert_exact(&got, &mesh.positions, "exact"),
-            Some(b) => assert_within_half_a_step(&got, &mesh.positions, b, "grid"),
+            Some(b) => {
+                assert_within_half_a_step(&got, &mesh.positions, b, "grid");
+            }
         }
     }
 
@@ -186,7 +173,9 @@ proptest! {
         let got = round_trip(&mesh, KINDS[kind], bits, 6);
         match bits {
             None => assert_exact(&got, &mesh.positions, "exact"),
-            Some(b) => assert_within_half_a_step(&got, &mesh.positions, b, "grid"),
+            Some(b) => {
+                assert_within_half_a_step(&got, &mesh.positions, b, "grid");
+            }
         }
     }
 }

@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 mod common;
-use common::assert_same_up_to_rotation;
+use common::{assert_same_up_to_rotation, assert_within_half_a_step};
 
 use lrmesh::format::Metadata;
 use lrmesh::io::{read_mesh, ReadOptions};
@@ -346,13 +346,7 @@ fn vectors_match() {
                     std::fs::read_to_string(&positions_txt).unwrap(),
                     "{stem}: decoded positions differ"
                 );
-                let step = lrmesh::geometry::Grid::of(mesh.positions.iter().copied(), bits).step();
-                for (p, q) in back.positions.iter().zip(&mesh.positions) {
-                    for k in 0..3 {
-                        let error = (p[k] as f64 - q[k] as f64).abs();
-                        assert!(error <= step / 2.0 + p[k].abs() as f64 * 1.2e-7, "{stem}");
-                    }
-                }
+                assert_within_half_a_step(&back.positions, &mesh.positions, bits, &stem);
                 mesh.positions = back.positions.clone();
                 // Quantized attribute values come back as `dequantized` says, and as listed.
                 mesh =

@@ -304,3 +304,23 @@ pub fn forge_fields(
     }
     (rejected, accepted)
 }
+
+/// Asserts that every coordinate of `got` is within half a step of the `bits`-bit grid over
+/// `want`'s positions (FORMAT.md §3.3.1), plus the f32 rounding of the decoded value; returns
+/// the largest error, in steps.
+pub fn assert_within_half_a_step(got: &[[f32; 3]], want: &[[f32; 3]], bits: u8, what: &str) -> f64 {
+    let step = lrmesh::geometry::Grid::of(want.iter().copied(), bits).step();
+    let mut worst = 0.0f64;
+    for (p, q) in got.iter().zip(want) {
+        for k in 0..3 {
+            let error = (p[k] as f64 - q[k] as f64).abs();
+            let rounding = p[k].abs() as f64 * f32::EPSILON as f64;
+            assert!(
+                error <= step / 2.0 + rounding,
+                "{what}: {p:?} for {q:?}, step {step}"
+            );
+            worst = worst.max(error / step);
+        }
+    }
+    worst
+}
