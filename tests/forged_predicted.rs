@@ -135,22 +135,7 @@ fn v44_stream_ends_early() {
 /// 1 to 30 bits, reserved 0.
 #[test]
 fn v13_grid_of_predicted_positions() {
-    let bytes = edgebreaker(&torus(), Some(12));
-    let at = section_at(&bytes, Tag::GEOM);
-    for bits in [0, 31, u32::MAX] {
-        let bad = forge(&bytes, Tag::GEOM, |p| put(p, 24, bits));
-        breaks(&bad, 13, "GEOM", at + 24, "bits per coordinate");
-    }
-    let bad = forge(&bytes, Tag::GEOM, |p| put(p, 20, (-1.0f32).to_bits()));
-    breaks(&bad, 13, "GEOM", at + 20, "negative");
-    for field in [8, 12, 16, 20] {
-        let bad = forge(&bytes, Tag::GEOM, |p| put(p, field, f32::NAN.to_bits()));
-        breaks(&bad, 13, "GEOM", at + field as u64, "non-finite");
-    }
-    let bad = forge(&bytes, Tag::GEOM, |p| put(p, 4, 7));
-    breaks(&bad, 13, "GEOM", at + 4, "reserved");
-    let bad = forge(&bytes, Tag::GEOM, |p| p.truncate(20));
-    breaks(&bad, 13, "GEOM", at, "");
+    grid_breaks(&edgebreaker(&torus(), Some(12)));
 }
 
 /// What the tests above forge from decodes exactly (lossless) or within half a step.

@@ -143,6 +143,30 @@ pub fn breaks(bytes: &[u8], rule: u8, section: &str, offset: u64, words: &str) {
     assert!(e.message.contains(words), "{:?} lacks {words:?}", e.message);
 }
 
+/// [V13] for the grid of `GEOM` encodings 2 and 4 (FORMAT.md §3.3.1), which one parser
+/// reads: `bytes` has such a section; each field is broken in turn (bits 0, 31 and beyond,
+/// a negative size, a non-finite minimum or size, the reserved field, a section cut inside
+/// the grid) and must be named.
+pub fn grid_breaks(bytes: &[u8]) {
+    let at = section_at(bytes, Tag::GEOM);
+    for bits in [0, 31, u32::MAX] {
+        let bad = forge(bytes, Tag::GEOM, |p| put(p, 24, bits));
+        breaks(&bad, 13, "GEOM", at + 24, "bits per coordinate");
+    }
+    let bad = forge(bytes, Tag::GEOM, |p| put(p, 20, (-1.0f32).to_bits()));
+    breaks(&bad, 13, "GEOM", at + 20, "negative");
+    for field in [8, 12, 16, 20] {
+        for x in [f32::NAN, f32::INFINITY] {
+            let bad = forge(bytes, Tag::GEOM, |p| put(p, field, x.to_bits()));
+            breaks(&bad, 13, "GEOM", at + field as u64, "non-finite");
+        }
+    }
+    let bad = forge(bytes, Tag::GEOM, |p| put(p, 4, 7));
+    breaks(&bad, 13, "GEOM", at + 4, "reserved");
+    let bad = forge(bytes, Tag::GEOM, |p| p.truncate(20));
+    breaks(&bad, 13, "GEOM", at, "");
+}
+
 // ---------------------------------------------------------------------------------------
 // Section tables: header words and arrays as u32 values, to change counts and join again.
 
