@@ -6,7 +6,7 @@
 use lrmesh::fuzz_checks::round_trip_every_kind;
 use lrmesh::mesh::{Attribute, Part, Parts, Semantic, Values};
 use lrmesh::ops::CornerOps;
-use lrmesh::write::{encode, EncodeOptions};
+use lrmesh::write::{encode, Connectivity, EncodeOptions};
 use lrmesh::{Corner, Mesh};
 use proptest::prelude::*;
 
@@ -266,7 +266,16 @@ fn quantized_round_trip(mesh: &Mesh, normal_bits: u8, texcoord_bits: u8) {
         for (slot, t) in conn.triangles().enumerate() {
             for (k, c) in conn.triangle_corners(t).into_iter().enumerate() {
                 for (view, decoded) in file.attributes().iter().zip(&back.attributes) {
-                    assert_eq!(view.value_encoding(), 1);
+                    // Predicted (2) only in Edgebreaker from level 1, where it is shorter.
+                    let predictable =
+                        options.connectivity == Connectivity::Edgebreaker && options.level > 0;
+                    assert!(
+                        view.value_encoding() == 1 || (predictable && view.value_encoding() == 2),
+                        "{:?} level {}: encoding {}",
+                        options.connectivity,
+                        options.level,
+                        view.value_encoding()
+                    );
                     let i = file.value_index(view, c);
                     assert!(view.value_bytes(i).is_none());
                     let index = decoded.corners.as_ref().unwrap();
@@ -344,5 +353,59 @@ fn quantized_values_are_smaller_and_raw_files_do_not_change() {
         },
     ] {
         assert!(encode(&mesh, &bad).is_err());
+    }
+}
+
+/// Real meshes with seams: in Edgebreaker from level 1, quantized normals and texture
+/// coordinates are predicted (value encoding 2), shorter than packed, and every corner
+/// reads the same value as in the packed file of level 0.
+#[test]
+fn predicted_values_equal_the_packed_ones_on_real_meshes() {
+    for path in [
+        "corpus/assets/obj/spider/spider.obj",
+        "corpus/assets/obj/regr01/regr01.obj",
+        "corpus/assets/obj/tinyobjloader/map-bump.obj",
+    ] {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(path);
+        let mesh = lrmesh::io::read_mesh(&path, &Default::default())
+            .unwrap()
+            .mesh;
+        let options = |level| EncodeOptions {
+            connectivity: Connectivity::Edgebreaker,
+            position_bits: Some(14),
+            normal_bits: Some(10),
+            texcoord_bits: Some(12),
+            level,
+            ..EncodeOptions::default()
+        };
+        let packed = encode(&mesh, &options(0)).unwrap();
+        let predicted = encode(&mesh, &options(6)).unwrap();
+        let (a, b) = (
+            lrmesh::open(&packed).unwrap(),
+            lrmesh::open(&predicted).unwrap(),
+        );
+        assert_eq!(a.attributes().len(), b.attributes().len());
+        for (x, y) in a.attributes().iter().zip(b.attributes()) {
+            assert_eq!((x.value_encoding(), y.value_encoding()), (1, 2), "{path:?}");
+            assert!(
+                y.stored_bytes() < x.stored_bytes(),
+                "{path:?} {}: predicted {} bytes, packed {}",
+                y.semantic,
+                y.stored_bytes(),
+                x.stored_bytes()
+            );
+            let (ca, cb) = (a.connectivity(), b.connectivity());
+            assert_eq!(ca.triangle_count(), cb.triangle_count());
+            for (ta, tb) in ca.triangles().zip(cb.triangles()) {
+                for (c, d) in ca
+                    .triangle_corners(ta)
+                    .into_iter()
+                    .zip(cb.triangle_corners(tb))
+                {
+                    let (i, j) = (a.value_index(x, c), b.value_index(y, d));
+                    assert_eq!(x.value_levels(i), y.value_levels(j), "{path:?}");
+                }
+            }
+        }
     }
 }

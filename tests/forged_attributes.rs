@@ -517,7 +517,7 @@ fn v46_quantized_values() {
     let o = |x: usize| at + x as u64;
     // An unknown encoding; encoding 1 on integers.
     breaks(
-        &byte(&bytes, normal + 20, 2),
+        &byte(&bytes, normal + 20, 3),
         46,
         "ATTR",
         o(normal + 20),

@@ -267,7 +267,7 @@ pub fn bits_for(max: u32) -> u32 {
 }
 
 /// Whether an `ATTR` payload of a container of `vertices` vertices has a record of value
-/// encoding 1 (quantized), walking the records as far as they are well formed.
+/// encoding 1 or 2 (quantized, predicted), walking the records as far as they are well formed.
 pub fn any_quantized(payload: &[u8], vertices: u32) -> bool {
     let count = if payload.len() >= 4 {
         le_u32(payload, 0)

@@ -11,6 +11,8 @@ use crate::words::Words;
 pub const RAW: u8 = 0;
 /// Value encoding 1: quantized and bit packed (f32 attributes only).
 pub const QUANTIZED: u8 = 1;
+/// Value encoding 2: the integers of encoding 1, predicted and range coded (GEOMETRY.md §7).
+pub const PREDICTED: u8 = 2;
 /// The most bits per component of an octahedral normal.
 pub const MAX_NORMAL_BITS: u8 = 24;
 /// The most bits per component of a grid-quantized value.
@@ -187,7 +189,13 @@ fn sgn(t: f64) -> f64 {
 /// folded onto the square when `z < 0`, then each coordinate `u` stored as
 /// `clamp(round((u + 1) / 2 · max), 0, max)`. A zero vector is stored as `(0, 0, 1)`.
 pub fn octahedral_encode(n: [f32; 3], bits: u8) -> [u32; 2] {
-    let [mut x, mut y, mut z] = n.map(f64::from);
+    octahedral_encode_f64(n.map(f64::from), bits)
+}
+
+/// [`octahedral_encode`] of a binary64 direction: the predictor of normals (GEOMETRY.md §7)
+/// encodes sums of face normals, which an f32 may not hold.
+pub fn octahedral_encode_f64(n: [f64; 3], bits: u8) -> [u32; 2] {
+    let [mut x, mut y, mut z] = n;
     let mut s = x.abs() + y.abs() + z.abs();
     if s == 0.0 || !s.is_finite() {
         (x, y, z, s) = (0.0, 0.0, 1.0, 1.0);

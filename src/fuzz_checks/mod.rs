@@ -105,6 +105,30 @@ pub fn container_forged(data: &[u8]) {
     let Some((&choice, edits)) = data.split_first() else {
         return;
     };
+    let bytes = forged_base(choice);
+    let mut sections: Vec<_> = open(&bytes, &Limits::default())
+        .expect("what we write opens")
+        .sections
+        .sections
+        .iter()
+        .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
+        .collect();
+    for edit in edits.chunks_exact(4) {
+        let index = edit[0] as usize % sections.len();
+        let section = &mut sections[index].2;
+        if section.is_empty() {
+            continue;
+        }
+        let at = u16::from_le_bytes([edit[1], edit[2]]) as usize % section.len();
+        section[at] = edit[3];
+    }
+    container(&assemble(&sections));
+}
+
+/// The valid container [`container_forged`] starts from: bits 0–1 of `choice` the kind,
+/// 2–3 the torus's size, 4 holes and defects, 5 the input order kept, 6 positions and
+/// attribute values quantized (predicted values in Edgebreaker), 7 seams and parts.
+pub fn forged_base(choice: u8) -> Vec<u8> {
     let kind = [
         Connectivity::Lr,
         Connectivity::LrCompact,
@@ -124,29 +148,13 @@ pub fn container_forged(data: &[u8]) {
         connectivity: kind,
         keep_order: choice & 0x20 != 0,
         position_bits: (choice & 0x40 != 0).then_some(12),
-        // Quantized attribute values (ATTR value encoding 1) with the quantized positions.
+        // Quantized attribute values (ATTR value encoding 1, or 2 in Edgebreaker) with the
+        // quantized positions.
         normal_bits: (choice & 0x40 != 0).then_some(10),
         texcoord_bits: (choice & 0x40 != 0).then_some(12),
         ..EncodeOptions::default()
     };
-    let bytes = encode(&mesh, &options).expect("a generated mesh encodes");
-    let mut sections: Vec<_> = open(&bytes, &Limits::default())
-        .expect("what we write opens")
-        .sections
-        .sections
-        .iter()
-        .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
-        .collect();
-    for edit in edits.chunks_exact(4) {
-        let index = edit[0] as usize % sections.len();
-        let section = &mut sections[index].2;
-        if section.is_empty() {
-            continue;
-        }
-        let at = u16::from_le_bytes([edit[1], edit[2]]) as usize % section.len();
-        section[at] = edit[3];
-    }
-    container(&assemble(&sections));
+    encode(&mesh, &options).expect("a generated mesh encodes")
 }
 
 /// Per-corner texture coordinates that break along every third triangle, per-vertex normals,

@@ -8,6 +8,7 @@ pub(crate) mod float;
 pub(crate) mod predict;
 pub(crate) mod residual;
 pub(crate) mod traversal;
+pub(crate) mod values;
 
 /// The largest number of bits per coordinate of a grid.
 pub const MAX_GRID_BITS: u8 = 30;

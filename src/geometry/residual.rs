@@ -18,10 +18,15 @@ const BUCKETS: usize = 8;
 /// Adaptive bits below the leading one (a tree of 3 models); the rest are raw.
 const HIGH_MODELS: usize = 4;
 
-/// The adaptive state of one stream of position residuals.
+/// Components a coded value may have: 3 for positions, 1 to 4 for attribute values.
+pub(crate) const MAX_AXES: usize = 4;
+
+/// The adaptive state of one stream of residuals: of positions (3 axes), or of an
+/// attribute's values (1 to 4 components, ATTR.md).
 pub(crate) struct Residuals {
+    axes: usize,
     class: Vec<[Bit; TREE]>,
-    sign: [[Bit; 3]; KINDS],
+    sign: [[Bit; MAX_AXES]; KINDS],
     high: Vec<[Bit; HIGH_MODELS]>,
     /// Whether one parallelogram is chosen, and which (`choice`).
     single: [Bit; COUNTS],
@@ -29,35 +34,44 @@ pub(crate) struct Residuals {
     /// The largest class a residual may have (the decoder rejects larger ones).
     max_class: u32,
     /// Classes of the current vertex's residuals so far, and of the previous vertex's.
-    current: [u32; 3],
-    previous: [u32; 3],
+    current: [u32; MAX_AXES],
+    previous: [u32; MAX_AXES],
 }
 
 impl Residuals {
-    /// Fresh models for residuals of at most `max_class` bits (at most 63).
+    /// Fresh models for position residuals of at most `max_class` bits (at most 63).
     pub(crate) fn new(max_class: u32) -> Residuals {
-        debug_assert!(max_class < TREE as u32);
+        Residuals::with_axes(max_class, 3)
+    }
+
+    /// Fresh models for values of `axes` components (1 to 4).
+    pub(crate) fn with_axes(max_class: u32, axes: usize) -> Residuals {
+        debug_assert!(max_class < TREE as u32 && (1..=MAX_AXES).contains(&axes));
         Residuals {
-            class: vec![[Bit::default(); TREE]; KINDS * 3 * BUCKETS],
-            sign: [[Bit::default(); 3]; KINDS],
-            high: vec![[Bit::default(); HIGH_MODELS]; 3 * TREE],
+            axes,
+            class: vec![[Bit::default(); TREE]; KINDS * axes * BUCKETS],
+            sign: [[Bit::default(); MAX_AXES]; KINDS],
+            high: vec![[Bit::default(); HIGH_MODELS]; axes * TREE],
             single: [Bit::default(); COUNTS],
             which: [[Bit::default(); 3]; COUNTS],
             max_class,
-            current: [0; 3],
-            previous: [0; 3],
+            current: [0; MAX_AXES],
+            previous: [0; MAX_AXES],
         }
     }
 
-    /// The context bucket of axis `k` (GEOMETRY.md §4.2): the rounded mean class of the
-    /// previous vertex's residuals for x; of x's and the previous vertex's y for y; of x's,
-    /// y's and the previous vertex's z for z.
-    #[allow(clippy::manual_div_ceil)] // the spec's formulas, written as in GEOMETRY.md
+    /// The context bucket of axis `k` (GEOMETRY.md §4.2): with `n` axes, the mean class of
+    /// the previous value's residuals for the first axis (rounded up); of the current value's
+    /// so far and the previous value's same axis for the others (rounded half up). For
+    /// positions: x from the previous x, y, z; y from x and the previous y; z from x, y and
+    /// the previous z.
     fn bucket(&self, k: usize) -> usize {
-        let c = match k {
-            0 => (self.previous[0] + self.previous[1] + self.previous[2] + 2) / 3,
-            1 => (self.current[0] + self.previous[1] + 1) / 2,
-            _ => (self.current[0] + self.current[1] + self.previous[2] + 1) / 3,
+        let n = self.axes as u32;
+        let c = if k == 0 {
+            self.previous[..self.axes].iter().sum::<u32>().div_ceil(n)
+        } else {
+            let k32 = k as u32;
+            (self.current[..k].iter().sum::<u32>() + self.previous[k] + k32.div_ceil(2)) / (k32 + 1)
         };
         (c as usize).min(BUCKETS - 1)
     }
@@ -81,7 +95,7 @@ impl Residuals {
     }
 
     /// Codes residual `r` of axis `k` (encoder), or decodes one (decoder); `None` when the
-    /// decoder reads a class above the maximum. After axis 2, the vertex is complete.
+    /// decoder reads a class above the maximum. After the last axis, the value is complete.
     #[inline]
     pub(crate) fn code<B: Bits>(
         &mut self,
@@ -93,7 +107,7 @@ impl Residuals {
         let magnitude = r.unsigned_abs();
         let class = 64 - magnitude.leading_zeros();
         let bucket = self.bucket(k);
-        let tree = &mut self.class[(kind * 3 + k) * BUCKETS + bucket];
+        let tree = &mut self.class[(kind * self.axes + k) * BUCKETS + bucket];
         let mut node = 1usize;
         for i in (0..TREE_LEVELS).rev() {
             let bit = (class >> i) & 1;
@@ -104,7 +118,7 @@ impl Residuals {
             return None;
         }
         self.current[k] = class;
-        if k == 2 {
+        if k + 1 == self.axes {
             self.previous = self.current;
         }
         if class == 0 {

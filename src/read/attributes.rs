@@ -2,10 +2,11 @@
 //! one list of attribute views that answer "which value at this corner" in constant time on
 //! the file's bytes. Their rules (V14, V40–V42, V46) are checked in `rules`.
 
+mod predicted;
 mod rules;
 
 use crate::format::attributes::Seams;
-use crate::format::quantized::{Quantizer, QUANTIZED, RAW};
+use crate::format::quantized::{Quantizer, PREDICTED, QUANTIZED, RAW};
 use crate::format::{le_f32, le_u32};
 use crate::mesh::{ComponentType, Semantic};
 use crate::ops::CornerOps;
@@ -27,8 +28,8 @@ pub struct AttributeView<'a> {
     pub per_corner: bool,
     /// Raw values (value encoding 0); empty when quantized.
     values: &'a [u8],
-    /// Value encoding 1: how the integers map to values, and the packed words.
-    quantized: Option<(Quantizer, LeWords<'a>)>,
+    /// Value encodings 1 and 2: how the integers map to values, and the packed words.
+    quantized: Option<(Quantizer, Packed<'a>)>,
     value_count: u32,
     extra: u32,
     flagged: u32,
@@ -65,18 +66,18 @@ impl<'a> AttributeView<'a> {
         usize::from(self.components) * self.component_type.size()
     }
 
-    /// The value encoding of the record (FORMAT.md §3.9): 0 raw, 1 quantized.
+    /// The value encoding of the record (FORMAT.md §3.9): 0 raw, 1 quantized, 2 predicted.
     pub fn value_encoding(&self) -> u8 {
-        if self.quantized.is_some() {
-            QUANTIZED
-        } else {
-            RAW
+        match &self.quantized {
+            None => RAW,
+            Some((_, Packed::File(_))) => QUANTIZED,
+            Some((_, Packed::Decoded(_))) => PREDICTED,
         }
     }
 
-    /// How the values are quantized, for a record of value encoding 1.
+    /// How the values are quantized, for a record of value encoding 1 or 2.
     pub fn quantizer(&self) -> Option<Quantizer> {
-        self.quantized.map(|(q, _)| q)
+        self.quantized.as_ref().map(|(q, _)| *q)
     }
 
     /// The little-endian bytes of value `i` as the file stores them, for a raw record
@@ -145,6 +146,30 @@ impl<'a> AttributeView<'a> {
         match &self.seams {
             Some(seams) => seams.value_index(t, k, v, vertices),
             None => v,
+        }
+    }
+}
+
+/// The integers of a quantized record, packed as encoding 1 stores them: read in place
+/// (encoding 1), or decoded when the container was opened (encoding 2).
+#[derive(Debug, Clone, PartialEq)]
+enum Packed<'a> {
+    File(LeWords<'a>),
+    Decoded(Vec<u32>),
+}
+
+impl Words for Packed<'_> {
+    #[inline]
+    fn at(&self, i: usize) -> u32 {
+        match self {
+            Packed::File(w) => w.at(i),
+            Packed::Decoded(w) => w[i],
+        }
+    }
+    fn count(&self) -> usize {
+        match self {
+            Packed::File(w) => w.count(),
+            Packed::Decoded(w) => w.len(),
         }
     }
 }

@@ -191,7 +191,7 @@ impl Container<'_> {
                 name: attribute_name(&a.semantic),
                 binding: if a.per_corner { "corner" } else { "vertex" },
                 format: format!(
-                    "{}x{}{}{}",
+                    "{}x{}{}{}{}",
                     format!("{:?}", a.component_type).to_lowercase(),
                     a.components,
                     if a.normalized { " normalized" } else { "" },
@@ -201,6 +201,11 @@ impl Container<'_> {
                         }
                         Some(q) => format!(" quantized {}-bit", q.bits()),
                         None => String::new(),
+                    },
+                    if a.value_encoding() == crate::format::quantized::PREDICTED {
+                        " predicted"
+                    } else {
+                        ""
                     }
                 ),
                 values: a.value_count(),

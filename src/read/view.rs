@@ -226,7 +226,9 @@ impl<'a> Container<'a> {
         let cx = attributes::Context {
             vertices: m,
             connectivity: &connectivity,
+            positions: &positions,
             kept: mesh.kept,
+            kept_triangles: kept,
             copies,
             holds: Default::default(),
         };

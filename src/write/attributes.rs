@@ -5,13 +5,16 @@
 use std::collections::HashMap;
 
 use super::connectivity::Encoded;
+use crate::corner_table::CornerTable;
 use crate::error::{Error, Result};
 use crate::format::attributes::{
     bits_for, pack, AttributeHeader, NORMALIZED, PER_CORNER, RANK_SPAN,
 };
 use crate::format::parts::PartsHeader;
-use crate::format::quantized::{Quantizer, MAX_NORMAL_BITS, MAX_VALUE_BITS, QUANTIZED};
+use crate::format::quantized::{Quantizer, MAX_NORMAL_BITS, MAX_VALUE_BITS, PREDICTED, QUANTIZED};
+use crate::geometry::values::{self, Uses};
 use crate::mesh::{Attribute, Mesh, Semantic, Values};
+use crate::ops::CornerOps;
 
 /// Every corner of the container: the slot of its triangle, its container vertex and the
 /// input corner (`3·input triangle + k`) it came from, in slot order then corner order.
@@ -66,16 +69,29 @@ impl Corners {
     }
 }
 
-/// The `ATTR` payload: `A`, then a record per attribute.
+/// The `ATTR` payload: `A`, then a record per attribute. With `predicted` (the container's
+/// positions as a reader decodes them and Edgebreaker's corner table: an Edgebreaker
+/// container from level 1), quantized values are predicted (value encoding 2) when that is
+/// shorter than packing them.
 pub(super) fn attr_section(
     mesh: &Mesh,
     corners: &Corners,
     input_vertex: &[u32],
     options: &super::EncodeOptions,
+    predicted: Option<(&[[f32; 3]], &CornerTable)>,
 ) -> Result<Vec<u8>> {
+    let slots = predicted.map(|(positions, table)| {
+        let kept: Vec<[u32; 3]> = corners.triangles[table.triangle_id_bound() as usize..]
+            .iter()
+            .map(|t| t.1)
+            .collect();
+        let (vertices, opposites) = values::slots(table, &kept);
+        (positions, vertices, opposites)
+    });
     let mut out = (mesh.attributes.len() as u32).to_le_bytes().to_vec();
     for a in &mesh.attributes {
-        out.extend(record(a, corners, input_vertex, quantizer(a, options)?)?);
+        let q = quantizer(a, options)?;
+        out.extend(record(a, corners, input_vertex, q, slots.as_ref())?);
     }
     Ok(out)
 }
@@ -132,19 +148,36 @@ fn key(a: &Attribute, q: Option<&Quantizer>, i: usize, out: &mut Vec<u8>) {
 }
 
 /// The values part of a quantized record from the keys of its values (u32 integers, `c'`
-/// per value): the header, then the integers packed in `b` bits.
-fn packed_values(q: &Quantizer, keys: &[u8]) -> Vec<u8> {
+/// per value): the header, then the integers packed in `b` bits (value encoding 1); or,
+/// with `uses`, predicted (encoding 2) when that is shorter. Returns the encoding too.
+fn quantized_values(q: &Quantizer, keys: &[u8], uses: Option<&Uses>) -> (u8, Vec<u8>) {
     let levels: Vec<u32> = keys
         .chunks_exact(4)
         .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
         .collect();
-    let mut out = Vec::new();
-    q.write_header(&mut out);
+    let mut packed = Vec::new();
+    q.write_header(&mut packed);
     for w in pack(&levels, u32::from(q.bits())) {
-        out.extend_from_slice(&w.to_le_bytes());
+        packed.extend_from_slice(&w.to_le_bytes());
     }
-    out
+    let Some(uses) = uses else {
+        return (QUANTIZED, packed);
+    };
+    let stream = values::encode(uses, q, &levels);
+    let mut predicted = Vec::new();
+    q.write_header(&mut predicted);
+    predicted.extend_from_slice(&(stream.len() as u32).to_le_bytes());
+    predicted.extend_from_slice(&stream);
+    if predicted.len() < packed.len() {
+        (PREDICTED, predicted)
+    } else {
+        (QUANTIZED, packed)
+    }
 }
+
+/// What predicted values need: the positions as decoded, the vertices and the opposite
+/// corners of every slot ([`values::slots`]).
+type Slots<'p> = (&'p [[f32; 3]], Vec<[u32; 3]>, Vec<[u32; 3]>);
 
 /// One attribute's record. Per vertex: the value of each container vertex's input vertex.
 /// Per corner: each container vertex takes the value most of its corners have; the other
@@ -155,6 +188,7 @@ fn record(
     corners: &Corners,
     input_vertex: &[u32],
     quantizer: Option<Quantizer>,
+    slots: Option<&Slots>,
 ) -> Result<Vec<u8>> {
     let m = input_vertex.len();
     let n = usize::from(a.components);
@@ -180,19 +214,33 @@ fn record(
         slots: corners.slots,
         ..AttributeHeader::default()
     };
-    if q.is_some() {
-        header.reserved[0] = u32::from(QUANTIZED);
-    }
-    let finish = |values: &[u8]| match q {
-        Some(q) => packed_values(q, values),
-        None => values.to_vec(),
+    // The values part and its encoding, from the keys and the value at every corner.
+    let own: Vec<[u32; 3]> = corners.triangles.iter().map(|t| t.1).collect();
+    let finish = |header: &mut AttributeHeader, keys: &[u8], at_corners: &[[u32; 3]]| {
+        let Some(q) = q else {
+            return keys.to_vec();
+        };
+        let uses = slots.map(|(positions, vertices, opposites)| {
+            debug_assert_eq!(vertices, &own);
+            Uses {
+                vertices,
+                values: at_corners,
+                opposites,
+                positions,
+                count: (keys.len() / (4 * q.fields() as usize)) as u32,
+            }
+        });
+        let (encoding, bytes) = quantized_values(q, keys, uses.as_ref());
+        header.reserved[0] = u32::from(encoding);
+        bytes
     };
     let mut values = Vec::new();
     let Some(index) = &a.corners else {
         for &v in input_vertex {
             key(a, q, v as usize, &mut values);
         }
-        return Ok(assemble(&header, name, &finish(&values), &[], &[], &[]));
+        let values = finish(&mut header, &values, &own);
+        return Ok(assemble(&header, name, &values, &[], &[], &[]));
     };
     header.flags |= PER_CORNER;
 
@@ -262,10 +310,9 @@ fn record(
     for &(_, id) in &extras {
         key(a, q, first_of[id as usize], &mut values);
     }
-    let values = finish(&values);
-
     let mut flags = vec![0u32; corners.slots.div_ceil(32) as usize];
     let mut entries = Vec::new();
+    let mut at_corners = Vec::with_capacity(corners.triangles.len());
     for (slot, cv, from) in &corners.triangles {
         let entry = |k: usize| {
             let (v, id) = (cv[k], value_at(from[k]));
@@ -278,11 +325,16 @@ fn record(
             }
         };
         let triple = [entry(0), entry(1), entry(2)];
+        at_corners.push([0, 1, 2].map(|k| match triple[k] {
+            0 => cv[k],
+            e => m as u32 + e - 1,
+        }));
         if triple != [0, 0, 0] {
             flags[*slot as usize / 32] |= 1 << (slot % 32);
             entries.extend(triple);
         }
     }
+    let values = finish(&mut header, &values, &at_corners);
     if entries.is_empty() {
         return Ok(assemble(&header, name, &values, &[], &[], &[]));
     }

@@ -213,9 +213,12 @@ fn sections(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<Se
         Built::LrCompact(lr) => lr.kept_aside(),
         Built::Strips(cts) => cts.kept_aside(),
     };
-    // Per-corner attributes and parts need the triangles as a reader numbers them.
-    let shape = mesh.has_per_corner_attributes() || mesh.parts.is_some();
+    // Per-corner attributes, parts and predicted values need the triangles as a reader
+    // numbers them.
     let predicted = options.level > 0;
+    let shape = mesh.has_per_corner_attributes()
+        || mesh.parts.is_some()
+        || (predicted && !mesh.attributes.is_empty());
     let encoded = connectivity(built, options, shape, predicted)?;
     let m = encoded.input_vertex.len() as u32;
     let per_vertex = |v: u32| encoded.input_vertex[v as usize] as usize;
@@ -276,7 +279,19 @@ fn sections(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<Se
     if !mesh.attributes.is_empty() || mesh.parts.is_some() {
         let corners = attributes::Corners::new(mesh, &encoded, kept, &primary)?;
         if !mesh.attributes.is_empty() {
-            let payload = attributes::attr_section(mesh, &corners, &encoded.input_vertex, options)?;
+            // Predicted values need the positions a reader decodes: Edgebreaker's, coded.
+            let decoded = encoded
+                .decoder_table
+                .as_ref()
+                .filter(|_| options.level > 0)
+                .map(|table| (positions::as_decoded(&container_positions, options), table));
+            let payload = attributes::attr_section(
+                mesh,
+                &corners,
+                &encoded.input_vertex,
+                options,
+                decoded.as_ref().map(|(p, t)| (p.as_slice(), *t)),
+            )?;
             sections.push((Tag::ATTR, Flags::NONE, payload));
         }
         if let Some(payload) = attributes::part_section(mesh, &corners)? {

@@ -50,6 +50,21 @@ pub(super) fn section(
     })
 }
 
+/// `positions` as a reader decodes them from the predicted encodings (2 and 3): on the grid
+/// of `options.position_bits`, or exact.
+pub(super) fn as_decoded(positions: &[[f32; 3]], options: &EncodeOptions) -> Vec<[f32; 3]> {
+    match options.position_bits {
+        Some(bits) if (1..=MAX_GRID_BITS).contains(&bits) => {
+            let grid = Grid::of(positions.iter().copied(), bits);
+            positions
+                .iter()
+                .map(|&p| grid.dequantize(grid.quantize(p)))
+                .collect()
+        }
+        _ => positions.to_vec(),
+    }
+}
+
 /// The shorter payload, `a` on a tie.
 fn smaller(a: Vec<u8>, b: Vec<u8>) -> Vec<u8> {
     if b.len() < a.len() {

@@ -3,11 +3,14 @@
 //! [`AttributeView`].
 
 use super::AttributeView;
+use super::{predicted, Packed};
 use crate::error::{Result, Rule};
 use crate::format::attributes::{
     bits_for, AttributeHeader, Seams, NORMALIZED, PER_CORNER, RANK_SPAN, RECORD_HEADER_LEN,
 };
-use crate::format::quantized::{Quantizer, MAX_NORMAL_BITS, MAX_VALUE_BITS, QUANTIZED, RAW};
+use crate::format::quantized::{
+    Quantizer, MAX_NORMAL_BITS, MAX_VALUE_BITS, PREDICTED, QUANTIZED, RAW,
+};
 use crate::format::{le_f32, Tag};
 use crate::mesh::{ComponentType, Semantic};
 use crate::ops::CornerOps;
@@ -20,7 +23,11 @@ use crate::words::{LeWords, Words};
 pub(in crate::read) struct Context<'c, 'a> {
     pub vertices: u32,
     pub connectivity: &'c Connectivity<'a>,
+    /// The positions, for predicted values (encoding 2).
+    pub positions: &'c crate::read::Positions<'a>,
     pub kept: u32,
+    /// The kept triangles, three vertices each.
+    pub kept_triangles: LeWords<'a>,
     pub copies: LeWords<'a>,
     /// Which of the connectivity's triangle ids hold a triangle: made once, when `ATTR` or
     /// `PART` first needs it.
@@ -171,7 +178,7 @@ fn record<'a>(
     let encoding = h.value_encoding();
     let quantizer = match encoding {
         RAW => None,
-        QUANTIZED => Some(quantizer(f, at, i, &h, component_type, cx.vertices)?),
+        QUANTIZED | PREDICTED => Some(quantizer(f, at, i, &h, component_type, cx.vertices)?),
         _ => {
             return Err(f.err(
                 at + 20,
@@ -182,6 +189,10 @@ fn record<'a>(
     };
     let layout = match &quantizer {
         None => h.layout(cx.vertices),
+        Some(q) if encoding == PREDICTED => {
+            let start = RECORD_HEADER_LEN + usize::from(h.name_len);
+            h.layout_with_values(predicted::values_len(f, at, i, start, q)?)
+        }
         Some(q) => q
             .values_len(u64::from(cx.vertices) + u64::from(h.extra))
             .and_then(|n| h.layout_with_values(n)),
@@ -190,8 +201,12 @@ fn record<'a>(
         return Err(err(8, "counts overflow".into()));
     };
     if layout.len() > bytes.len() - at {
-        // A quantized record's length depends on its `b` (V46).
-        let rule = if quantizer.is_some() { Rule(46) } else { rule };
+        // A quantized record's length depends on its `b` (V46), a predicted one's on `n`.
+        let rule = match encoding {
+            PREDICTED => Rule(47),
+            QUANTIZED => Rule(46),
+            _ => rule,
+        };
         return Err(f.err(
             at,
             rule,
@@ -251,6 +266,10 @@ fn record<'a>(
             }
             None
         }
+        Some(q) if encoding == PREDICTED => {
+            values = &[];
+            Some((q, Packed::Decoded(Vec::new())))
+        }
         Some(q) => {
             let words = LeWords(&values[q.header_len()..]);
             let used = (u64::from(cx.vertices) + u64::from(h.extra))
@@ -264,7 +283,7 @@ fn record<'a>(
                 ));
             }
             values = &[];
-            Some((q, words))
+            Some((q, Packed::File(words)))
         }
     };
     let seams = if h.flagged == 0 {
@@ -280,6 +299,11 @@ fn record<'a>(
         check_seams(f, at, i, &h, &layout, &seams, cx)?;
         Some(seams)
     };
+    let mut quantized = quantized;
+    if let Some((q, packed @ Packed::Decoded(_))) = &mut quantized {
+        let range = at + layout.values.start..at + layout.values.end;
+        *packed = Packed::Decoded(predicted::decode(f, (i, &h, range), q, seams.as_ref(), cx)?);
+    }
     let view = AttributeView {
         semantic,
         components: h.components,
@@ -368,7 +392,7 @@ fn quantizer(
         }
     };
     let need = q.values_len(u64::from(vertices) + u64::from(h.extra));
-    if need.is_none_or(|n| n > (left - start) as u64) {
+    if h.value_encoding() == QUANTIZED && need.is_none_or(|n| n > (left - start) as u64) {
         return Err(err(
             start,
             format!(
