@@ -38,6 +38,7 @@ pub fn minor_for<'a>(sections: impl IntoIterator<Item = (Tag, &'a [u8])>) -> u16
         .map(|&(tag, bytes)| match tag {
             Tag::GEOM if bytes.len() >= 4 && le_u32(bytes, 0) >= 2 => 2,
             Tag::ATTR if vertices.is_some_and(|v| attributes::any_quantized(bytes, v)) => 2,
+            Tag::PART if bytes.len() >= 10 && bytes[9] == parts::RUNS => 2,
             Tag::ATTR | Tag::PART => 1,
             _ => 0,
         })

@@ -1,12 +1,16 @@
 //! The `PART` section (FORMAT.md §3.10): the parts' labels as JSON, then the part of every
-//! triangle slot as a packed index.
+//! triangle slot, as packed indices (index encoding 0) or as range-coded runs (1).
 
 use super::attributes::{bits_for, packed};
 use super::le_u32;
 use crate::words::Words;
 
-/// Bytes of the header: `P`, `S`, `b`, `J`.
+/// Bytes of the header: `P`, `S`, `b` and the index encoding, `J`.
 pub const HEADER_LEN: usize = 16;
+/// Index encoding 0: `b` bits per slot, read in place.
+pub const PACKED: u8 = 0;
+/// Index encoding 1 (version 1.2): runs of slots with one part, range coded.
+pub const RUNS: u8 = 1;
 
 /// The `PART` header, as stored.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -17,6 +21,10 @@ pub struct PartsHeader {
     pub slots: u32,
     /// Bits per index (`b`): the fewest that hold `P − 1`.
     pub bits: u32,
+    /// How the indices are stored: [`PACKED`] or [`RUNS`].
+    pub encoding: u8,
+    /// Bytes 10 and 11, reserved: 0.
+    pub reserved: u16,
     /// Bytes of the JSON (`J`).
     pub json_len: u32,
 }
@@ -27,17 +35,22 @@ impl PartsHeader {
         PartsHeader {
             parts: le_u32(bytes, 0),
             slots: le_u32(bytes, 4),
-            bits: le_u32(bytes, 8),
+            bits: u32::from(bytes[8]),
+            encoding: bytes[9],
+            reserved: u16::from_le_bytes([bytes[10], bytes[11]]),
             json_len: le_u32(bytes, 12),
         }
     }
 
     /// The 16 bytes of the header.
     pub fn to_bytes(&self) -> Vec<u8> {
-        [self.parts, self.slots, self.bits, self.json_len]
-            .iter()
-            .flat_map(|x| x.to_le_bytes())
-            .collect()
+        let mut out = Vec::with_capacity(HEADER_LEN);
+        out.extend_from_slice(&self.parts.to_le_bytes());
+        out.extend_from_slice(&self.slots.to_le_bytes());
+        out.extend_from_slice(&[self.bits as u8, self.encoding]);
+        out.extend_from_slice(&self.reserved.to_le_bytes());
+        out.extend_from_slice(&self.json_len.to_le_bytes());
+        out
     }
 
     /// The bits an index needs for `parts` parts.
@@ -45,7 +58,8 @@ impl PartsHeader {
         bits_for(parts.saturating_sub(1))
     }
 
-    /// The section's exact length, `None` beyond the address space.
+    /// The section's exact length with packed indices (encoding 0), `None` beyond the
+    /// address space.
     pub fn len(&self) -> Option<usize> {
         let words = (u64::from(self.slots) * u64::from(self.bits)).div_ceil(32);
         usize::try_from(HEADER_LEN as u64 + u64::from(self.json_len) + 4 * words).ok()
@@ -65,4 +79,64 @@ pub fn part_of<W: Words>(indices: &W, bits: u32, t: u32) -> u32 {
     } else {
         packed(indices, t, bits)
     }
+}
+
+/// The runs stream of `index` (FORMAT.md §3.10.1): per run of slots with one part, its part
+/// and its length − 1 as adaptive Elias gamma integers.
+pub(crate) fn encode_runs(index: &[u32]) -> Vec<u8> {
+    use crate::edgebreaker::coder::{code_uint, Encoder, UintModel};
+    let (mut e, mut part, mut run) = (Encoder::new(), UintModel::default(), UintModel::default());
+    let mut at = 0;
+    while at < index.len() {
+        let p = index[at];
+        let len = index[at..].iter().take_while(|&&x| x == p).count();
+        code_uint(&mut e, &mut part, u64::from(p));
+        code_uint(&mut e, &mut run, len as u64 - 1);
+        at += len;
+    }
+    e.finish()
+}
+
+/// The part of each of `slots` slots from a runs stream (at byte `base` of the file, for
+/// errors); `Err((offset, message))` for a part not below `parts`, a run past the last
+/// slot, or an overrun.
+pub(crate) fn decode_runs(
+    stream: &[u8],
+    base: usize,
+    slots: u32,
+    parts: u32,
+) -> Result<Vec<u32>, (u64, String)> {
+    use crate::edgebreaker::coder::{code_uint, Bits, Decoder, UintModel};
+    let (mut d, mut part, mut run) = (
+        Decoder::new(stream, base),
+        UintModel::default(),
+        UintModel::default(),
+    );
+    let mut index = Vec::with_capacity(slots as usize);
+    while index.len() < slots as usize {
+        let at = d.offset();
+        let p = code_uint(&mut d, &mut part, 0).filter(|&p| p < u64::from(parts));
+        let Some(p) = p else {
+            return Err((
+                at,
+                format!("slot {}: a part not below {parts}", index.len()),
+            ));
+        };
+        let left = slots as usize - index.len();
+        let len = code_uint(&mut d, &mut run, 0).filter(|&l| l < left as u64);
+        let Some(len) = len else {
+            return Err((
+                at,
+                format!("slot {}: a run past the last of {slots} slots", index.len()),
+            ));
+        };
+        if d.overrun() {
+            return Err((
+                d.offset(),
+                format!("the stream ends before slot {}", index.len()),
+            ));
+        }
+        index.extend(std::iter::repeat_n(p as u32, len as usize + 1));
+    }
+    Ok(index)
 }

@@ -158,7 +158,7 @@ pub fn forged_base(choice: u8) -> Vec<u8> {
 }
 
 /// Per-corner texture coordinates that break along every third triangle, per-vertex normals,
-/// a per-vertex custom attribute and two parts: so that forged `ATTR` and `PART` sections are reached.
+/// a per-vertex custom attribute and parts: so that forged `ATTR` and `PART` sections are reached.
 fn with_seams_and_parts(mesh: &mut crate::Mesh) {
     use crate::mesh::{Attribute, Part, Parts, Semantic, Values};
     let corners: Vec<u32> = (0..3 * mesh.triangles.len() as u32)
@@ -177,12 +177,25 @@ fn with_seams_and_parts(mesh: &mut crate::Mesh) {
         values: Values::U16((0..mesh.positions.len() as u16).collect()),
         corners: None,
     });
+    // Alternating on the smallest torus (packed indices); on the others, five parts of which
+    // the first triangle has one and every other triangle another (runs in Edgebreaker).
     let mut parts = Parts::default();
-    for t in 0..mesh.triangles.len() {
-        let i = parts.intern(Part {
-            material: Some(["a", "b"][t % 2].into()),
-            ..Part::default()
-        });
+    let n = mesh.triangles.len();
+    let ids: Vec<u32> = ["a", "b", "c", "d", "e"]
+        .iter()
+        .map(|m| {
+            parts.intern(Part {
+                material: Some((*m).into()),
+                ..Part::default()
+            })
+        })
+        .collect();
+    for t in 0..n {
+        let i = match (n > 30, t) {
+            (false, t) => ids[t % 2],
+            (true, 0) => ids[4],
+            (true, _) => ids[0],
+        };
         parts.of_triangle.push(i);
     }
     mesh.parts = Some(parts);

@@ -10,7 +10,7 @@ use crate::error::{Error, Result};
 use crate::format::attributes::{
     bits_for, pack, AttributeHeader, NORMALIZED, PER_CORNER, RANK_SPAN,
 };
-use crate::format::parts::PartsHeader;
+use crate::format::parts::{encode_runs, PartsHeader, RUNS};
 use crate::format::quantized::{Quantizer, MAX_NORMAL_BITS, MAX_VALUE_BITS, PREDICTED, QUANTIZED};
 use crate::geometry::values::{self, Uses};
 use crate::mesh::{Attribute, Mesh, Semantic, Values};
@@ -370,33 +370,51 @@ fn assemble(
     out
 }
 
-/// The `PART` payload: the header, the parts as JSON, the packed part index of every slot
-/// (0 for slots that hold no triangle).
-pub(super) fn part_section(mesh: &Mesh, corners: &Corners) -> Result<Option<Vec<u8>>> {
+/// The `PART` payload: the header, the parts as JSON, then the part of every slot: packed
+/// (index encoding 0), or with `runs` (an Edgebreaker container from level 1) the
+/// range-coded runs of FORMAT.md §3.10.1 when they are shorter.
+pub(super) fn part_section(mesh: &Mesh, corners: &Corners, runs: bool) -> Result<Option<Vec<u8>>> {
     let Some(parts) = &mesh.parts else {
         return Ok(None);
     };
     let json = serde_json::to_vec(parts)
         .map_err(|e| Error::Internal(format!("parts do not serialise: {e}")))?;
     let count = parts.parts.len() as u32;
-    let header = PartsHeader {
+    let mut header = PartsHeader {
         parts: count,
         slots: corners.slots,
         bits: PartsHeader::bits_for_parts(count),
         json_len: u32::try_from(json.len())
             .map_err(|_| Error::Unsupported("part labels beyond 4 GiB of JSON".into()))?,
+        ..PartsHeader::default()
     };
     let mut index = vec![0u32; corners.slots as usize];
     for (slot, _, from) in &corners.triangles {
         index[*slot as usize] = parts.of_triangle[from[0] as usize / 3];
     }
-    let mut out = header.to_bytes();
-    out.extend_from_slice(&json);
-    if header.bits > 0 {
-        for w in pack(&index, header.bits) {
-            out.extend_from_slice(&w.to_le_bytes());
+    let packed = if header.bits > 0 {
+        pack(&index, header.bits)
+    } else {
+        Vec::new()
+    };
+    let stream = runs.then(|| encode_runs(&index));
+    let mut out = Vec::new();
+    match stream {
+        Some(stream) if stream.len() + 4 < 4 * packed.len() => {
+            header.encoding = RUNS;
+            out.extend(header.to_bytes());
+            out.extend_from_slice(&json);
+            out.extend_from_slice(&(stream.len() as u32).to_le_bytes());
+            out.extend_from_slice(&stream);
+        }
+        _ => {
+            out.extend(header.to_bytes());
+            out.extend_from_slice(&json);
+            for w in packed {
+                out.extend_from_slice(&w.to_le_bytes());
+            }
+            debug_assert_eq!(header.len(), Some(out.len()));
         }
     }
-    debug_assert_eq!(header.len(), Some(out.len()));
     Ok(Some(out))
 }

@@ -294,7 +294,8 @@ fn sections(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<Se
             )?;
             sections.push((Tag::ATTR, Flags::NONE, payload));
         }
-        if let Some(payload) = attributes::part_section(mesh, &corners)? {
+        let runs = encoded.kind == crate::format::Kind::EDGEBREAKER && options.level > 0;
+        if let Some(payload) = attributes::part_section(mesh, &corners, runs)? {
             sections.push((Tag::PART, Flags::NONE, payload));
         }
     }
