@@ -357,8 +357,9 @@ fn quantized_values_are_smaller_and_raw_files_do_not_change() {
 }
 
 /// Real meshes with seams: in Edgebreaker from level 1, quantized normals and texture
-/// coordinates are predicted (value encoding 2), shorter than packed, and every corner
-/// reads the same value as in the packed file of level 0.
+/// coordinates are predicted (value encoding 2) with coded seams (seam encoding 1), shorter
+/// than packed with the seam tables, and every corner reads the same value as in the packed
+/// file of level 0.
 #[test]
 fn predicted_values_equal_the_packed_ones_on_real_meshes() {
     for path in [
@@ -387,6 +388,9 @@ fn predicted_values_equal_the_packed_ones_on_real_meshes() {
         assert_eq!(a.attributes().len(), b.attributes().len());
         for (x, y) in a.attributes().iter().zip(b.attributes()) {
             assert_eq!((x.value_encoding(), y.value_encoding()), (1, 2), "{path:?}");
+            if x.flagged_triangles() > 0 {
+                assert_eq!((x.seam_encoding(), y.seam_encoding()), (0, 1), "{path:?}");
+            }
             assert!(
                 y.stored_bytes() < x.stored_bytes(),
                 "{path:?} {}: predicted {} bytes, packed {}",

@@ -128,9 +128,9 @@ fn v40_attribute_records() {
         o(r0 + 5),
         "per-corner",
     );
-    // The first reserved word's low byte is the value encoding ([V46]).
+    // The first reserved word's low bytes are the value and seam encodings ([V46], [V49]).
     for k in 0..3 {
-        let at = r0 + 20 + 4 * k + usize::from(k == 0);
+        let at = r0 + 20 + 4 * k + 2 * usize::from(k == 0);
         let bad = byte(&bytes, at, 1);
         breaks(&bad, 40, "ATTR", o(at), "reserved");
     }

@@ -16,6 +16,11 @@ pub const NORMALIZED: u8 = 1;
 /// Flag bit: the attribute is per corner (otherwise per vertex, with no seams).
 pub const PER_CORNER: u8 = 2;
 
+/// Seam encoding 0: the random-access tables `FLAGS`, `RANK` and `ENTRIES`.
+pub const TABLE_SEAMS: u8 = 0;
+/// Seam encoding 1 (Edgebreaker only): the value of every corner range coded (GEOMETRY.md §8).
+pub const CODED_SEAMS: u8 = 1;
+
 /// A record's header, as stored.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct AttributeHeader {
@@ -55,7 +60,8 @@ pub struct RecordLayout {
     pub flags: std::ops::Range<usize>,
     /// `RANK`: flagged slots before each span of 256, `⌈S/256⌉` words, when `F > 0`.
     pub rank: std::ops::Range<usize>,
-    /// `ENTRIES`: `3F` entries of `b` bits, in `⌈3F·b/32⌉` words.
+    /// `ENTRIES`: `3F` entries of `b` bits, in `⌈3F·b/32⌉` words; with coded seams (seam
+    /// encoding 1), `n` and the stream instead.
     pub entries: std::ops::Range<usize>,
 }
 
@@ -137,29 +143,49 @@ impl AttributeHeader {
         self.reserved[0] as u8
     }
 
-    /// The layout of a record of raw values (value encoding 0) for `vertices` container
-    /// vertices; `None` for an unknown component type or sizes beyond the address space.
-    pub fn layout(&self, vertices: u32) -> Option<RecordLayout> {
-        let size = ComponentType::from_code(self.component_type)?.size() as u64;
-        let values = (u64::from(vertices) + u64::from(self.extra))
-            .checked_mul(u64::from(self.components) * size)?;
-        self.layout_with_values(values)
+    /// The seam encoding (FORMAT.md §3.9): byte 21, the second byte of the first reserved
+    /// word, [`TABLE_SEAMS`] or [`CODED_SEAMS`].
+    pub fn seam_encoding(&self) -> u8 {
+        (self.reserved[0] >> 8) as u8
     }
 
-    /// The layout of the record when its values part takes `values` bytes.
+    /// Bytes of the values part of a record of raw values (value encoding 0) for
+    /// `vertices` container vertices; `None` for an unknown component type or an overflow.
+    pub fn raw_values_len(&self, vertices: u32) -> Option<u64> {
+        let size = ComponentType::from_code(self.component_type)?.size() as u64;
+        (u64::from(vertices) + u64::from(self.extra)).checked_mul(u64::from(self.components) * size)
+    }
+
+    /// The layout of a record of raw values (value encoding 0) with the seam tables, for
+    /// `vertices` container vertices; `None` for an unknown component type or sizes beyond
+    /// the address space.
+    pub fn layout(&self, vertices: u32) -> Option<RecordLayout> {
+        self.layout_with_values(self.raw_values_len(vertices)?)
+    }
+
+    /// The layout of a record with the seam tables when its values part takes `values` bytes.
     pub fn layout_with_values(&self, values: u64) -> Option<RecordLayout> {
+        self.layout_with_parts(values, None)
+    }
+
+    /// The layout of the record when its values part takes `values` bytes and, for coded
+    /// seams (seam encoding 1), the seam part `coded` bytes (its length `n` included): they
+    /// take the place of `ENTRIES`, with no `FLAGS` or `RANK`.
+    pub fn layout_with_parts(&self, values: u64, coded: Option<u64>) -> Option<RecordLayout> {
         let name_end = RECORD_HEADER_LEN as u64 + u64::from(self.name_len);
         let values_end = name_end + values;
-        let (flags, rank, entries) = if self.flagged == 0 {
-            (0, 0, 0)
-        } else {
-            let s = u64::from(self.slots);
-            let bits = 3 * u64::from(self.flagged) * u64::from(self.entry_bits);
-            (
-                4 * s.div_ceil(32),
-                4 * s.div_ceil(256),
-                4 * bits.div_ceil(32),
-            )
+        let (flags, rank, entries) = match coded {
+            Some(n) => (0, 0, n),
+            None if self.flagged == 0 => (0, 0, 0),
+            None => {
+                let s = u64::from(self.slots);
+                let bits = 3 * u64::from(self.flagged) * u64::from(self.entry_bits);
+                (
+                    4 * s.div_ceil(32),
+                    4 * s.div_ceil(256),
+                    4 * bits.div_ceil(32),
+                )
+            }
         };
         let flags_end = values_end + flags;
         let rank_end = flags_end + rank;
@@ -266,9 +292,10 @@ pub fn bits_for(max: u32) -> u32 {
     32 - max.leading_zeros()
 }
 
-/// Whether an `ATTR` payload of a container of `vertices` vertices has a record of value
-/// encoding 1 or 2 (quantized, predicted), walking the records as far as they are well formed.
-pub fn any_quantized(payload: &[u8], vertices: u32) -> bool {
+/// Whether an `ATTR` payload of a container of `vertices` vertices has a record of version
+/// 1.2: value encoding 1 or 2 (quantized, predicted) or seam encoding 1 (coded), walking the
+/// records as far as they are well formed.
+pub fn any_of_version_1_2(payload: &[u8], vertices: u32) -> bool {
     let count = if payload.len() >= 4 {
         le_u32(payload, 0)
     } else {
@@ -280,7 +307,7 @@ pub fn any_quantized(payload: &[u8], vertices: u32) -> bool {
             return false;
         }
         let h = AttributeHeader::parse(&payload[at..]);
-        if h.value_encoding() != super::quantized::RAW {
+        if h.value_encoding() != super::quantized::RAW || h.seam_encoding() != TABLE_SEAMS {
             return true;
         }
         match h.layout(vertices) {

@@ -7,6 +7,7 @@ pub mod blocked;
 pub(crate) mod float;
 pub(crate) mod predict;
 pub(crate) mod residual;
+pub(crate) mod seams;
 pub(crate) mod traversal;
 pub(crate) mod values;
 

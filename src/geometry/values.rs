@@ -43,10 +43,13 @@ pub(crate) struct Uses<'a> {
     pub count: u32,
 }
 
+/// The container vertex and the opposite corner of every corner of every slot.
+pub(crate) type SlotCorners = (Vec<[u32; 3]>, Vec<[u32; 3]>);
+
 /// The container vertices and the opposite corners (`3·slot + k`) of every slot: the
 /// triangles of Edgebreaker's corner table, corner `k` of triangle `t` being `t.c`, `t.c.n`,
 /// `t.c.p` (FORMAT.md §4), then the kept triangles, with no opposites.
-pub(crate) fn slots(table: &CornerTable, kept: &[[u32; 3]]) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
+pub(crate) fn slots(table: &CornerTable, kept: &[[u32; 3]]) -> SlotCorners {
     let n = table.triangle_id_bound();
     let corners = |t: u32| {
         let c = table.triangle_corner(Triangle(t));

@@ -2,6 +2,7 @@
 //! one list of attribute views that answer "which value at this corner" in constant time on
 //! the file's bytes. Their rules (V14, V40–V42, V46) are checked in `rules`.
 
+mod coded;
 mod predicted;
 mod rules;
 
@@ -33,7 +34,9 @@ pub struct AttributeView<'a> {
     value_count: u32,
     extra: u32,
     flagged: u32,
-    seams: Option<Seams<LeWords<'a>>>,
+    seams: Option<Seams<Packed<'a>>>,
+    /// The seam encoding (FORMAT.md §3.9): 0 tables, 1 coded.
+    seam_encoding: u8,
     /// Bytes the attribute takes in the file: its record, or its 1.0 section.
     stored_bytes: u64,
 }
@@ -73,6 +76,12 @@ impl<'a> AttributeView<'a> {
             Some((_, Packed::File(_))) => QUANTIZED,
             Some((_, Packed::Decoded(_))) => PREDICTED,
         }
+    }
+
+    /// The seam encoding of the record (FORMAT.md §3.9): 0 the random-access tables, 1 coded
+    /// (decoded when the container was opened).
+    pub fn seam_encoding(&self) -> u8 {
+        self.seam_encoding
     }
 
     /// How the values are quantized, for a record of value encoding 1 or 2.
@@ -150,8 +159,9 @@ impl<'a> AttributeView<'a> {
     }
 }
 
-/// The integers of a quantized record, packed as encoding 1 stores them: read in place
-/// (encoding 1), or decoded when the container was opened (encoding 2).
+/// Words read in place from the file, or decoded when the container was opened: the
+/// integers of a quantized record (value encodings 1 and 2), the seam tables (seam
+/// encodings 0 and 1).
 #[derive(Debug, Clone, PartialEq)]
 enum Packed<'a> {
     File(LeWords<'a>),

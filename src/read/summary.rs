@@ -191,7 +191,7 @@ impl Container<'_> {
                 name: attribute_name(&a.semantic),
                 binding: if a.per_corner { "corner" } else { "vertex" },
                 format: format!(
-                    "{}x{}{}{}{}",
+                    "{}x{}{}{}{}{}",
                     format!("{:?}", a.component_type).to_lowercase(),
                     a.components,
                     if a.normalized { " normalized" } else { "" },
@@ -204,6 +204,11 @@ impl Container<'_> {
                     },
                     if a.value_encoding() == crate::format::quantized::PREDICTED {
                         " predicted"
+                    } else {
+                        ""
+                    },
+                    if a.seam_encoding() == crate::format::attributes::CODED_SEAMS {
+                        " coded-seams"
                     } else {
                         ""
                     }

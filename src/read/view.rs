@@ -231,6 +231,7 @@ impl<'a> Container<'a> {
             kept_triangles: kept,
             copies,
             holds: Default::default(),
+            slots: Default::default(),
         };
         let attributes = attributes::attributes(&sections, legacy, &cx)?;
         let parts = parts::parts(&sections, &cx)?;

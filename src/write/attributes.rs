@@ -8,10 +8,11 @@ use super::connectivity::Encoded;
 use crate::corner_table::CornerTable;
 use crate::error::{Error, Result};
 use crate::format::attributes::{
-    bits_for, pack, AttributeHeader, NORMALIZED, PER_CORNER, RANK_SPAN,
+    bits_for, pack, AttributeHeader, CODED_SEAMS, NORMALIZED, PER_CORNER, RANK_SPAN,
 };
 use crate::format::parts::{encode_runs, PartsHeader, RUNS};
 use crate::format::quantized::{Quantizer, MAX_NORMAL_BITS, MAX_VALUE_BITS, PREDICTED, QUANTIZED};
+use crate::geometry::seams;
 use crate::geometry::values::{self, Uses};
 use crate::mesh::{Attribute, Mesh, Semantic, Values};
 use crate::ops::CornerOps;
@@ -180,9 +181,11 @@ fn quantized_values(q: &Quantizer, keys: &[u8], uses: Option<&Uses>) -> (u8, Vec
 type Slots<'p> = (&'p [[f32; 3]], Vec<[u32; 3]>, Vec<[u32; 3]>);
 
 /// One attribute's record. Per vertex: the value of each container vertex's input vertex.
-/// Per corner: each container vertex takes the value most of its corners have; the other
-/// values its corners have (equal bytes, or equal integers when quantized: one value) are
-/// its extra values, and the triangles with a corner on an extra value are flagged.
+/// Per corner: values are equal when their bytes are (their integers, when quantized); with
+/// the random-access tables, each container vertex takes the value most of its corners have,
+/// the other values its corners have are its extra values, and the triangles with a corner
+/// on an extra value are flagged ([`seam_tables`]). In an Edgebreaker container from level
+/// 1 (`slots`), the seams are range coded instead when that is shorter (GEOMETRY.md §8).
 fn record(
     a: &Attribute,
     corners: &Corners,
@@ -260,7 +263,77 @@ fn record(
         canonical.push(id);
     }
     let value_at = |from: u32| canonical[index[from as usize] as usize];
+    let zero = match q {
+        Some(q) => vec![0u8; 4 * q.fields() as usize],
+        None => vec![0u8; n * a.values.component_type().size()],
+    };
+    let value_bytes = |id: u32, out: &mut Vec<u8>| match id {
+        u32::MAX => out.extend_from_slice(&zero),
+        id => key(a, q, first_of[id as usize], out),
+    };
+    let tables = {
+        let (values, at_corners, entries, extra) =
+            seam_tables(corners, m, &value_at, &value_bytes)?;
+        let mut header = header;
+        let values = finish(&mut header, &values, &at_corners);
+        tables_record(header, name, &values, &entries, extra, corners.slots)
+    };
+    let Some((_, vertices, opposites)) = slots else {
+        return Ok(tables);
+    };
+    // Edgebreaker: the seams range coded (seam encoding 1), when that is shorter.
+    let ids: Vec<[u32; 3]> = corners
+        .triangles
+        .iter()
+        .map(|(_, _, from)| from.map(value_at))
+        .collect();
+    let slots = seams::Slots {
+        vertices,
+        opposites,
+        vertex_count: m as u32,
+    };
+    let coded = seams::encode(&slots, &ids);
+    let extra = coded.ids.len() - m;
+    let flagged = coded
+        .at_corners
+        .iter()
+        .filter(|t| t.iter().any(|&x| x as usize >= m))
+        .count() as u32;
+    if flagged == 0 {
+        return Ok(tables);
+    }
+    let mut values = Vec::new();
+    for &id in &coded.ids {
+        value_bytes(id, &mut values);
+    }
+    let values = finish(&mut header, &values, &coded.at_corners);
+    header.extra = extra as u32;
+    header.flagged = flagged;
+    header.entry_bits = bits_for(header.extra) as u8;
+    header.reserved[0] |= u32::from(CODED_SEAMS) << 8;
+    let mut out = header.to_bytes();
+    out.extend_from_slice(name);
+    out.extend_from_slice(&values);
+    out.extend_from_slice(&(coded.stream.len() as u32).to_le_bytes());
+    out.extend_from_slice(&coded.stream);
+    Ok(if out.len() < tables.len() {
+        out
+    } else {
+        tables
+    })
+}
 
+/// The values of the random-access seam tables (FORMAT.md §3.9, "Writing"): each container
+/// vertex's own value is the one most of its corners have, its other values are extras in
+/// vertex order. Returns the values' bytes, the value index at every corner, the entries of
+/// the flagged slots, and `E`.
+#[allow(clippy::type_complexity)]
+fn seam_tables(
+    corners: &Corners,
+    m: usize,
+    value_at: &dyn Fn(u32) -> u32,
+    value_bytes: &dyn Fn(u32, &mut Vec<u8>),
+) -> Result<(Vec<u8>, Vec<[u32; 3]>, Vec<(u32, [u32; 3])>, u32)> {
     // (vertex, value) of every corner, sorted: each vertex's run gives its base and extras.
     let mut uses: Vec<(u32, u32)> = corners
         .triangles
@@ -296,21 +369,11 @@ fn record(
     let e = u32::try_from(extras.len())
         .ok()
         .filter(|&e| u64::from(e) + m as u64 <= u64::from(u32::MAX))
-        .ok_or_else(|| Error::Unsupported(format!("{} attribute: too many values", a.semantic)))?;
-    let zero = match q {
-        Some(q) => vec![0u8; 4 * q.fields() as usize],
-        None => vec![0u8; n * a.values.component_type().size()],
-    };
-    for &b in &base {
-        match b {
-            u32::MAX => values.extend_from_slice(&zero),
-            id => key(a, q, first_of[id as usize], &mut values),
-        }
+        .ok_or_else(|| Error::Unsupported("an attribute with too many values".into()))?;
+    let mut values = Vec::new();
+    for &id in base.iter().chain(extras.iter().map(|x| &x.1)) {
+        value_bytes(id, &mut values);
     }
-    for &(_, id) in &extras {
-        key(a, q, first_of[id as usize], &mut values);
-    }
-    let mut flags = vec![0u32; corners.slots.div_ceil(32) as usize];
     let mut entries = Vec::new();
     let mut at_corners = Vec::with_capacity(corners.triangles.len());
     for (slot, cv, from) in &corners.triangles {
@@ -330,17 +393,34 @@ fn record(
             e => m as u32 + e - 1,
         }));
         if triple != [0, 0, 0] {
-            flags[*slot as usize / 32] |= 1 << (slot % 32);
-            entries.extend(triple);
+            entries.push((*slot, triple));
         }
     }
-    let values = finish(&mut header, &values, &at_corners);
-    if entries.is_empty() {
-        return Ok(assemble(&header, name, &values, &[], &[], &[]));
+    Ok((values, at_corners, entries, e))
+}
+
+/// A record with the random-access seam tables (seam encoding 0): `FLAGS`, `RANK` and the
+/// entries of the flagged slots.
+fn tables_record(
+    mut header: AttributeHeader,
+    name: &[u8],
+    values: &[u8],
+    flagged: &[(u32, [u32; 3])],
+    extra: u32,
+    slots: u32,
+) -> Vec<u8> {
+    if flagged.is_empty() {
+        return assemble(&header, name, values, &[], &[], &[]);
     }
-    header.extra = e;
-    header.flagged = (entries.len() / 3) as u32;
-    header.entry_bits = bits_for(e) as u8;
+    let mut flags = vec![0u32; slots.div_ceil(32) as usize];
+    let mut entries = Vec::with_capacity(3 * flagged.len());
+    for (slot, triple) in flagged {
+        flags[*slot as usize / 32] |= 1 << (slot % 32);
+        entries.extend(triple);
+    }
+    header.extra = extra;
+    header.flagged = flagged.len() as u32;
+    header.entry_bits = bits_for(extra) as u8;
     let rank: Vec<u32> = flags
         .chunks(RANK_SPAN as usize / 32)
         .scan(0u32, |before, words| {
@@ -350,7 +430,7 @@ fn record(
         })
         .collect();
     let packed = pack(&entries, u32::from(header.entry_bits));
-    Ok(assemble(&header, name, &values, &flags, &rank, &packed))
+    assemble(&header, name, values, &flags, &rank, &packed)
 }
 
 fn assemble(

@@ -303,3 +303,58 @@ pub fn lone_t0_triangle(bytes: &[u8]) -> usize {
         .find(|&j| (0..3).all(|i| lr.opposite(Corner(8 * m_r + 4 * j as u32 + i)).is_none()))
         .unwrap()
 }
+
+/// The container with attribute `i`'s coded seams (seam encoding 1; its record at `at` of
+/// `ATTR`, its seam part at `part`) replaced by the tables of seam encoding 0 that say the
+/// same, made from the corners' values as the reader gives them (an Edgebreaker container
+/// without kept triangles). With `extra`, the header says that many extra values instead
+/// (and the entries take the bits it needs), the values part unchanged.
+pub fn with_seam_tables(
+    bytes: &[u8],
+    i: usize,
+    at: usize,
+    part: usize,
+    extra: Option<u32>,
+) -> Vec<u8> {
+    use lrmesh::format::attributes::{pack, AttributeHeader};
+    let file = open(bytes, &Limits::default()).unwrap();
+    let a = &file.attributes()[i];
+    let end = at + a.stored_bytes() as usize;
+    let h = AttributeHeader::parse(&payload(bytes, Tag::ATTR)[at..]);
+    assert_eq!(h.seam_encoding(), 1);
+    let conn = file.connectivity();
+    let v = file.connectivity_vertex_count();
+    let mut flags = vec![0u32; h.slots.div_ceil(32) as usize];
+    let mut entries: Vec<u32> = Vec::new();
+    for t in 0..h.slots {
+        let c = conn.triangle_corner(lrmesh::Triangle(t));
+        let values = [c, conn.next(c), conn.prev(c)].map(|c| file.value_index(a, c));
+        if values.iter().any(|&x| x >= v) {
+            flags[t as usize / 32] |= 1 << (t % 32);
+            entries.extend(values.map(|x| if x < v { 0 } else { x - v + 1 }));
+        }
+    }
+    let rank: Vec<u32> = flags
+        .chunks(8)
+        .scan(0u32, |before, w| {
+            let r = *before;
+            *before += w.iter().map(|x| x.count_ones()).sum::<u32>();
+            Some(r)
+        })
+        .collect();
+    let e = extra.unwrap_or(h.extra);
+    let bits = lrmesh::format::attributes::bits_for(e);
+    let words = pack(&entries, bits);
+    forge(bytes, Tag::ATTR, |p| {
+        p[at + 21] = 0;
+        p[at + 5] = bits as u8;
+        p[at + 8..at + 12].copy_from_slice(&e.to_le_bytes());
+        let tables: Vec<u8> = flags
+            .iter()
+            .chain(&rank)
+            .chain(&words)
+            .flat_map(|w| w.to_le_bytes())
+            .collect();
+        p.splice(part..end, tables);
+    })
+}

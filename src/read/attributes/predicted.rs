@@ -3,13 +3,12 @@
 //! encoding 1 (rule V47).
 
 use super::rules::Context;
+use super::Packed;
 use crate::error::{Result, Rule};
 use crate::format::attributes::{pack, AttributeHeader, Seams};
 use crate::format::quantized::Quantizer;
 use crate::geometry::values::{self, Uses};
 use crate::read::fields::Fields;
-use crate::read::view::Connectivity;
-use crate::words::{LeWords, Words};
 
 const RULE: Rule = Rule(47);
 
@@ -40,12 +39,12 @@ pub(super) fn decode(
     f: &Fields,
     (i, h, values): (u32, &AttributeHeader, std::ops::Range<usize>),
     q: &Quantizer,
-    seams: Option<&Seams<LeWords>>,
+    seams: Option<&Seams<Packed>>,
     cx: &Context,
 ) -> Result<Vec<u32>> {
     let err = |at: usize, message: String| f.err(at, RULE, format!("attribute {i}: {message}"));
     let values_at = values.start;
-    let Connectivity::Edgebreaker(table) = cx.connectivity else {
+    let Some((vertices, opposites)) = super::coded::slots(cx) else {
         return Err(err(
             values_at,
             "predicted values need the Edgebreaker connectivity".into(),
@@ -62,10 +61,6 @@ pub(super) fn decode(
             ),
         ));
     }
-    let kept: Vec<[u32; 3]> = (0..cx.kept as usize)
-        .map(|j| [0, 1, 2].map(|k| cx.kept_triangles.at(3 * j + k)))
-        .collect();
-    let (vertices, opposites) = values::slots(table, &kept);
     let at_corners: Vec<[u32; 3]> = vertices
         .iter()
         .enumerate()
@@ -80,9 +75,9 @@ pub(super) fn decode(
         .map(|v| cx.positions.get(v))
         .collect();
     let uses = Uses {
-        vertices: &vertices,
+        vertices,
         values: &at_corners,
-        opposites: &opposites,
+        opposites,
         positions: &positions,
         count: cx.vertices + h.extra,
     };

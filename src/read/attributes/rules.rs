@@ -3,10 +3,11 @@
 //! [`AttributeView`].
 
 use super::AttributeView;
-use super::{predicted, Packed};
+use super::{coded, predicted, Packed};
 use crate::error::{Result, Rule};
 use crate::format::attributes::{
-    bits_for, AttributeHeader, Seams, NORMALIZED, PER_CORNER, RANK_SPAN, RECORD_HEADER_LEN,
+    bits_for, AttributeHeader, Seams, CODED_SEAMS, NORMALIZED, PER_CORNER, RANK_SPAN,
+    RECORD_HEADER_LEN, TABLE_SEAMS,
 };
 use crate::format::quantized::{
     Quantizer, MAX_NORMAL_BITS, MAX_VALUE_BITS, PREDICTED, QUANTIZED, RAW,
@@ -32,6 +33,9 @@ pub(in crate::read) struct Context<'c, 'a> {
     /// Which of the connectivity's triangle ids hold a triangle: made once, when `ATTR` or
     /// `PART` first needs it.
     pub holds: std::cell::OnceCell<Vec<bool>>,
+    /// The vertices and opposite corners of every slot of an Edgebreaker container, for
+    /// coded seams and predicted values: made once, when a record first needs them.
+    pub slots: std::cell::OnceCell<crate::geometry::values::SlotCorners>,
 }
 
 impl Context<'_, '_> {
@@ -71,6 +75,7 @@ pub(in crate::read) fn attributes<'a>(
             extra: 0,
             flagged: 0,
             seams: None,
+            seam_encoding: TABLE_SEAMS,
             stored_bytes: values.len() as u64,
         };
     let mut out = Vec::new();
@@ -168,13 +173,24 @@ fn record<'a>(
     if normalized && !component_type.is_integer() {
         return Err(err(4, "normalized floats".into()));
     }
-    let reserved = [h.reserved[0] & !0xff, h.reserved[1], h.reserved[2]];
+    let reserved = [h.reserved[0] & !0xffff, h.reserved[1], h.reserved[2]];
     if let Some(k) = reserved.iter().position(|&r| r != 0) {
         return Err(err(
-            20 + 4 * k + usize::from(k == 0),
+            20 + 4 * k + 2 * usize::from(k == 0),
             "reserved field is not zero".into(),
         ));
     }
+    let coded_seams = match h.seam_encoding() {
+        TABLE_SEAMS => false,
+        CODED_SEAMS => true,
+        other => {
+            return Err(f.err(
+                at + 21,
+                Rule(49),
+                format!("attribute {i}: unknown seam encoding {other}"),
+            ))
+        }
+    };
     let encoding = h.value_encoding();
     let quantizer = match encoding {
         RAW => None,
@@ -187,22 +203,29 @@ fn record<'a>(
             ))
         }
     };
-    let layout = match &quantizer {
-        None => h.layout(cx.vertices),
-        Some(q) if encoding == PREDICTED => {
-            let start = RECORD_HEADER_LEN + usize::from(h.name_len);
-            h.layout_with_values(predicted::values_len(f, at, i, start, q)?)
-        }
-        Some(q) => q
-            .values_len(u64::from(cx.vertices) + u64::from(h.extra))
-            .and_then(|n| h.layout_with_values(n)),
+    let start = RECORD_HEADER_LEN + usize::from(h.name_len);
+    let values_len = match &quantizer {
+        None => h.raw_values_len(cx.vertices),
+        Some(q) if encoding == PREDICTED => Some(predicted::values_len(f, at, i, start, q)?),
+        Some(q) => q.values_len(u64::from(cx.vertices) + u64::from(h.extra)),
     };
-    let Some(layout) = layout else {
+    let Some(values_len) = values_len else {
+        return Err(err(8, "counts overflow".into()));
+    };
+    let coded_len = match coded_seams {
+        true => {
+            let part = (at as u64 + start as u64 + values_len).min(bytes.len() as u64);
+            Some(coded::seams_len(f, part as usize, i)?)
+        }
+        false => None,
+    };
+    let Some(layout) = h.layout_with_parts(values_len, coded_len) else {
         return Err(err(8, "counts overflow".into()));
     };
     if layout.len() > bytes.len() - at {
         // A quantized record's length depends on its `b` (V46), a predicted one's on `n`.
         let rule = match encoding {
+            _ if coded_seams => Rule(49),
             PREDICTED => Rule(47),
             QUANTIZED => Rule(46),
             _ => rule,
@@ -286,10 +309,14 @@ fn record<'a>(
             Some((q, Packed::File(words)))
         }
     };
-    let seams = if h.flagged == 0 {
+    let seams = if coded_seams {
+        let part = at + layout.entries.start..at + layout.entries.end;
+        Some(coded::decode(f, (i, &h, part), cx)?)
+    } else if h.flagged == 0 {
         None
     } else {
-        let words = |r: &std::ops::Range<usize>| LeWords(&bytes[at + r.start..at + r.end]);
+        let words =
+            |r: &std::ops::Range<usize>| Packed::File(LeWords(&bytes[at + r.start..at + r.end]));
         let seams = Seams {
             flags: words(&layout.flags),
             rank: words(&layout.rank),
@@ -316,6 +343,7 @@ fn record<'a>(
         extra: h.extra,
         flagged: h.flagged,
         seams,
+        seam_encoding: h.seam_encoding(),
         stored_bytes: layout.len() as u64,
     };
     Ok((view, at + layout.values.start, at + layout.len()))
@@ -413,7 +441,7 @@ fn check_seams(
     i: u32,
     h: &AttributeHeader,
     layout: &crate::format::attributes::RecordLayout,
-    seams: &Seams<LeWords>,
+    seams: &Seams<Packed>,
     cx: &Context,
 ) -> Result<()> {
     let rule = Rule(41);
