@@ -35,6 +35,38 @@ impl Words for LeWords<'_> {
     }
 }
 
+/// Words read in place from the file, or decoded when the container was opened (a coded
+/// section or field: the readers keep both behind [`Words`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Stored<'a> {
+    /// Little-endian words of the file.
+    File(LeWords<'a>),
+    /// Words decoded from a coded part of the file.
+    Decoded(Vec<u32>),
+}
+
+impl Default for Stored<'_> {
+    fn default() -> Self {
+        Stored::File(LeWords::default())
+    }
+}
+
+impl Words for Stored<'_> {
+    #[inline]
+    fn at(&self, i: usize) -> u32 {
+        match self {
+            Stored::File(w) => w.at(i),
+            Stored::Decoded(w) => w[i],
+        }
+    }
+    fn count(&self) -> usize {
+        match self {
+            Stored::File(w) => w.count(),
+            Stored::Decoded(w) => w.len(),
+        }
+    }
+}
+
 /// An array of 16-bit units: a vector, or little-endian bytes read in place.
 pub trait Units {
     /// Unit `i`. Panics when `i` is out of range; validation guarantees it never is.

@@ -7,6 +7,7 @@
 //! [`crate::read`].
 
 pub mod attributes;
+pub mod kept;
 pub mod layout;
 mod metadata;
 pub mod parts;
@@ -25,7 +26,7 @@ pub const MINOR: u16 = 1;
 
 /// The minor version a file of these sections (tags and payloads) is written with: 2 with a
 /// position encoding of version 1.2 (`GEOM` encodings 2 to 5), an `ATTR` record of value
-/// encoding 1 or 2 or of seam encoding 1, or `PART` runs; 1 with a section of version 1.1 (`ATTR`, `PART`), 0 otherwise,
+/// encoding 1 or 2 or of seam encoding 1, `PART` runs or `KEPC`; 1 with a section of version 1.1 (`ATTR`, `PART`), 0 otherwise,
 /// so that a file says the oldest version that reads it.
 pub fn minor_for<'a>(sections: impl IntoIterator<Item = (Tag, &'a [u8])>) -> u16 {
     let sections: Vec<(Tag, &[u8])> = sections.into_iter().collect();
@@ -39,6 +40,7 @@ pub fn minor_for<'a>(sections: impl IntoIterator<Item = (Tag, &'a [u8])>) -> u16
             Tag::GEOM if bytes.len() >= 4 && le_u32(bytes, 0) >= 2 => 2,
             Tag::ATTR if vertices.is_some_and(|v| attributes::any_of_version_1_2(bytes, v)) => 2,
             Tag::PART if bytes.len() >= 10 && bytes[9] == parts::RUNS => 2,
+            Tag::KEPC => 2,
             Tag::ATTR | Tag::PART => 1,
             _ => 0,
         })
@@ -250,8 +252,11 @@ impl Tag {
     /// Parts: object, group and material labels of the triangles (version 1.1).
     pub const PART: Tag = Tag(*b"PART");
 
+    /// Kept triangles, range coded (version 1.2, Edgebreaker only).
+    pub const KEPC: Tag = Tag(*b"KEPC");
+
     /// The sections a version-1 reader understands.
-    pub const KNOWN: [Tag; 15] = [
+    pub const KNOWN: [Tag; 16] = [
         Tag::META,
         Tag::MESH,
         Tag::GEOM,
@@ -264,6 +269,7 @@ impl Tag {
         Tag::LRBE,
         Tag::COPY,
         Tag::KEPT,
+        Tag::KEPC,
         Tag::PERM,
         Tag::ATTR,
         Tag::PART,

@@ -3,9 +3,9 @@
 //! Every reader follows the same rules:
 //!
 //! - **Vertex identity is the file's.** One mesh vertex per vertex record, in file order;
-//!   unreferenced vertices are kept and nothing is merged (STL, which has no shared vertices,
-//!   and glTF, which splits vertices at seams, merge equal positions only when asked, see
-//!   [`ReadOptions::weld`]).
+//!   unreferenced vertices are kept and nothing is merged unless asked: [`ReadOptions::weld`]
+//!   merges vertices at equal positions in every format (for STL, which has no shared
+//!   vertices, and glTF, which splits vertices at seams, and for files written that way).
 //! - **Polygons are fan-triangulated** in file order: `(v0, v1, ..., vk)` gives
 //!   `(v0, vi, vi+1)`. Repeated vertices inside a polygon are kept, so degenerate triangles
 //!   survive; no triangle is dropped or reordered. A face with fewer than 3 vertices is an error.
@@ -147,11 +147,12 @@ pub(crate) fn vertex_mesh(
 /// Options for the readers.
 #[derive(Debug, Clone, Default)]
 pub struct ReadOptions {
-    /// STL and glTF only: merge vertices whose positions are bit-identical (with `-0.0` equal
-    /// to `0.0`) into one vertex, numbered in order of first appearance. Without it every
-    /// triangle corner of an STL file is a vertex of its own, and a glTF file keeps its
-    /// vertices as stored, split wherever an attribute changes. For glTF the merge is
-    /// [`Mesh::weld`]: attributes that differ between merged vertices become per corner.
+    /// Merge vertices whose positions are bit-identical (with `-0.0` equal to `0.0`) into one
+    /// vertex, numbered in order of first appearance, in every format. Without it every
+    /// triangle corner of an STL file is a vertex of its own, a glTF file keeps its vertices
+    /// as stored (split wherever an attribute changes), and OBJ, OFF and PLY keep theirs. But
+    /// for STL (which has no attributes) the merge is [`Mesh::weld`]: attributes that differ
+    /// between merged vertices become per corner, so every corner keeps its values.
     pub weld: bool,
 }
 
@@ -191,9 +192,9 @@ pub fn read_mesh(path: &Path, opts: &ReadOptions) -> Result<Loaded> {
 /// the container reader's errors for `.lrm`).
 pub fn read_mesh_bytes(bytes: &[u8], format: MeshFormat, opts: &ReadOptions) -> Result<Loaded> {
     let loaded = match format {
-        MeshFormat::Obj => obj::read(bytes, opts),
-        MeshFormat::Off => off::read(bytes, opts),
-        MeshFormat::Ply => ply::read(bytes, opts),
+        MeshFormat::Obj => obj::read(bytes, opts).map(|l| welded(l, opts)),
+        MeshFormat::Off => off::read(bytes, opts).map(|l| welded(l, opts)),
+        MeshFormat::Ply => ply::read(bytes, opts).map(|l| welded(l, opts)),
         MeshFormat::Stl => stl::read(bytes, opts),
         MeshFormat::Gltf | MeshFormat::Glb => gltf::read(bytes, opts),
         MeshFormat::Lrm => Ok(Loaded {
@@ -203,6 +204,15 @@ pub fn read_mesh_bytes(bytes: &[u8], format: MeshFormat, opts: &ReadOptions) -> 
     }?;
     debug_assert!(loaded.mesh.validate().is_ok());
     Ok(loaded)
+}
+
+/// `loaded`, welded ([`Mesh::weld`]) when `opts` ask for it: the OBJ, OFF and PLY readers
+/// read vertices as stored; STL and glTF weld as they read.
+fn welded(mut loaded: Loaded, opts: &ReadOptions) -> Loaded {
+    if opts.weld {
+        loaded.mesh = loaded.mesh.weld();
+    }
+    loaded
 }
 
 /// Writes a mesh to a file, choosing the format by the file's extension: OBJ, OFF, binary

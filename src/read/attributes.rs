@@ -11,7 +11,8 @@ use crate::format::quantized::{Quantizer, PREDICTED, QUANTIZED, RAW};
 use crate::format::{le_f32, le_u32};
 use crate::mesh::{ComponentType, Semantic};
 use crate::ops::CornerOps;
-use crate::words::{LeWords, Words};
+use crate::words::Stored as Packed;
+use crate::words::Words;
 pub(super) use rules::{attributes, Context};
 
 /// One attribute of a container, borrowed from its bytes.
@@ -155,31 +156,6 @@ impl<'a> AttributeView<'a> {
         match &self.seams {
             Some(seams) => seams.value_index(t, k, v, vertices),
             None => v,
-        }
-    }
-}
-
-/// Words read in place from the file, or decoded when the container was opened: the
-/// integers of a quantized record (value encodings 1 and 2), the seam tables (seam
-/// encodings 0 and 1).
-#[derive(Debug, Clone, PartialEq)]
-enum Packed<'a> {
-    File(LeWords<'a>),
-    Decoded(Vec<u32>),
-}
-
-impl Words for Packed<'_> {
-    #[inline]
-    fn at(&self, i: usize) -> u32 {
-        match self {
-            Packed::File(w) => w.at(i),
-            Packed::Decoded(w) => w[i],
-        }
-    }
-    fn count(&self) -> usize {
-        match self {
-            Packed::File(w) => w.count(),
-            Packed::Decoded(w) => w.len(),
         }
     }
 }

@@ -1,12 +1,12 @@
 //! The sections around the connectivity: `META` (V11), `MESH` (V12), `GEOM` (V13), the
-//! per-vertex attributes (V14), `COPY` (V24), `KEPT` (V25) and `PERM` (V26).
+//! per-vertex attributes (V14), `COPY` (V24), `KEPT` (V25) or `KEPC` (V50) and `PERM` (V26).
 
 use super::fields::{format_error, Fields};
 use super::{Limits, Sections};
 use crate::error::{Error, Result, Rule};
 use crate::format::layout::{self, MeshRecord};
-use crate::format::{Kind, Metadata, Tag};
-use crate::words::{LeWords, Words};
+use crate::format::{kept, Kind, Metadata, Tag};
+use crate::words::{LeWords, Stored, Words};
 
 /// The `META` section, if present.
 pub(super) fn metadata(sections: &Sections, limits: &Limits) -> Result<Option<Metadata>> {
@@ -146,10 +146,14 @@ pub(super) fn copies<'a>(sections: &Sections<'a>, m: u32) -> Result<LeWords<'a>>
     Ok(words)
 }
 
-/// The triangles of `KEPT`, three vertices each (empty without it).
-pub(super) fn kept<'a>(sections: &Sections<'a>, m: u32) -> Result<LeWords<'a>> {
+/// The kept triangles, three vertices each: those of `KEPT`, or decoded from `KEPC` (an
+/// Edgebreaker container, `edgebreaker`); empty without either.
+pub(super) fn kept<'a>(sections: &Sections<'a>, m: u32, edgebreaker: bool) -> Result<Stored<'a>> {
+    if let Some(coded) = sections.section(Tag::KEPC) {
+        return kept_coded(sections, coded, m, edgebreaker).map(Stored::Decoded);
+    }
     let Some(section) = sections.section(Tag::KEPT) else {
-        return Ok(LeWords::default());
+        return Ok(Stored::default());
     };
     let f = Fields::new(*section);
     let rule = Rule(25);
@@ -168,7 +172,36 @@ pub(super) fn kept<'a>(sections: &Sections<'a>, m: u32) -> Result<LeWords<'a>> {
             format!("vertex {} out of range ({m} vertices)", words.at(i)),
         ));
     }
-    Ok(words)
+    Ok(Stored::File(words))
+}
+
+/// V50: `KEPC` only in an Edgebreaker container and not with `KEPT`; `k`, `n` and the stream
+/// within the section; the stream decodes to `k` triangles of vertices below `m`.
+fn kept_coded(
+    sections: &Sections,
+    section: &crate::read::sections::Section<'_>,
+    m: u32,
+    edgebreaker: bool,
+) -> Result<Vec<u32>> {
+    let f = Fields::new(*section);
+    let rule = Rule(50);
+    if sections.section(Tag::KEPT).is_some() {
+        return Err(f.err(0, rule, "both KEPT and KEPC"));
+    }
+    if !edgebreaker {
+        return Err(f.err(0, rule, "KEPC needs the Edgebreaker connectivity"));
+    }
+    let (k, n) = (f.u32(0, rule)?, f.u32(4, rule)?);
+    let at = kept::HEADER_LEN;
+    f.expect_len(Some(at as u64 + u64::from(n)), rule)?;
+    let base = section.offset as usize;
+    kept::decode(&section.bytes[at..], base + at, k, m).map_err(|(offset, message)| {
+        f.err(
+            (offset as usize).saturating_sub(base).min(f.len()),
+            rule,
+            message,
+        )
+    })
 }
 
 /// The vertex and triangle permutations of `PERM`, if present, for `w` output vertices and

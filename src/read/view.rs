@@ -14,7 +14,7 @@ use crate::lr::{CompactTables, LrLayout, LrTables};
 use crate::mesh::{ComponentType, Semantic};
 use crate::ops::CornerOps;
 use crate::strips::CtsTables;
-use crate::words::{LeUnits, LeWords, Words};
+use crate::words::{LeUnits, LeWords, Stored, Words};
 
 /// The connectivity of a validated container. It implements [`CornerOps`] for every kind,
 /// so that a caller need not match on it; the variants give the representation's own
@@ -151,7 +151,7 @@ pub struct Container<'a> {
     /// `(copy, original)` pairs, copies increasing.
     pub(super) copies: LeWords<'a>,
     /// Kept-aside triangles, three vertices each.
-    pub(super) kept: LeWords<'a>,
+    pub(super) kept: Stored<'a>,
     /// Vertex then triangle permutations to the input order.
     pub(super) perm: Option<(LeWords<'a>, LeWords<'a>)>,
     pub(super) output_vertices: u32,
@@ -209,13 +209,13 @@ impl<'a> Container<'a> {
                 ),
             ));
         }
-        let kept = counts::kept(&sections, m)?;
+        let kept = counts::kept(&sections, m, mesh.kind == Kind::EDGEBREAKER)?;
         if (kept.count() / 3) as u32 != mesh.kept {
             return Err(mesh_fields.err(
                 12,
                 Rule(12),
                 format!(
-                    "{} kept triangles, section KEPT holds {}",
+                    "{} kept triangles, section KEPT or KEPC holds {}",
                     mesh.kept,
                     kept.count() / 3
                 ),
@@ -228,7 +228,7 @@ impl<'a> Container<'a> {
             connectivity: &connectivity,
             positions: &positions,
             kept: mesh.kept,
-            kept_triangles: kept,
+            kept_triangles: &kept,
             copies,
             holds: Default::default(),
             slots: Default::default(),

@@ -311,12 +311,28 @@ fn sections(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<Se
         sections.push((Tag::COPY, Flags::REQUIRED, p));
     }
     if !kept.is_empty() {
+        let tris: Vec<[u32; 3]> = kept
+            .iter()
+            .map(|(_, tri)| tri.map(|x| primary[x as usize]))
+            .collect();
         let mut p = Vec::new();
         write_fields(&mut p, &[kept.len() as u32]);
-        for (_, tri) in kept {
-            write_fields(&mut p, &tri.map(|x| primary[x as usize]));
+        for tri in &tris {
+            write_fields(&mut p, tri);
         }
-        sections.push((Tag::KEPT, Flags::REQUIRED, p));
+        // Edgebreaker from level 1: range coded (FORMAT.md §3.7.1), when shorter.
+        let coded = (encoded.kind == crate::format::Kind::EDGEBREAKER && options.level > 0)
+            .then(|| crate::format::kept::encode(&tris))
+            .filter(|s| crate::format::kept::HEADER_LEN + s.len() < p.len());
+        match coded {
+            Some(stream) => {
+                let mut c = Vec::new();
+                write_fields(&mut c, &[kept.len() as u32, stream.len() as u32]);
+                c.extend_from_slice(&stream);
+                sections.push((Tag::KEPC, Flags::REQUIRED, c));
+            }
+            None => sections.push((Tag::KEPT, Flags::REQUIRED, p)),
+        }
     }
     if options.keep_order {
         // Output order: non-copy vertices in container order; the connectivity's triangles in

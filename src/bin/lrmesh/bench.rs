@@ -17,8 +17,8 @@ pub struct Args {
     /// Timed runs of each step; the median is reported.
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
     runs: u32,
-    /// STL and glTF input: merge vertices with identical positions into shared vertices
-    /// (glTF: attributes that differ at a seam become per corner).
+    /// Merge vertices with identical positions into shared vertices (any input format:
+    /// attributes that differ between them become per corner)
     #[arg(long)]
     weld: bool,
 }

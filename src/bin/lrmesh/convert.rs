@@ -11,8 +11,8 @@ pub struct Args {
     input: PathBuf,
     /// The output mesh (.obj, .off, .ply, .stl, .gltf, .glb).
     output: PathBuf,
-    /// STL and glTF input: merge vertices with identical positions into shared vertices
-    /// (glTF: attributes that differ at a seam become per corner).
+    /// Merge vertices with identical positions into shared vertices (any input format:
+    /// attributes that differ between them become per corner)
     #[arg(long)]
     weld: bool,
     /// STL output: ASCII instead of binary.

@@ -62,8 +62,8 @@ pub struct Args {
     /// instead of trying several and keeping the smallest.
     #[arg(long)]
     period: Option<u32>,
-    /// STL and glTF input: merge vertices with identical positions into shared vertices
-    /// (glTF: attributes that differ at a seam become per corner).
+    /// Merge vertices with identical positions into shared vertices (any input format:
+    /// attributes that differ between them become per corner)
     #[arg(long)]
     weld: bool,
 }

@@ -48,8 +48,8 @@ pub struct Args {
     /// Seed for the choice of seed corners (mesh input only).
     #[arg(long, default_value_t = LrOptions::default().seed)]
     seed: u64,
-    /// STL and glTF input: merge vertices with identical positions into shared vertices
-    /// (glTF: attributes that differ at a seam become per corner).
+    /// Merge vertices with identical positions into shared vertices (any input format:
+    /// attributes that differ between them become per corner)
     #[arg(long)]
     weld: bool,
 }

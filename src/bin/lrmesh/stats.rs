@@ -19,8 +19,8 @@ pub struct Args {
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
-    /// STL and glTF input: merge vertices with identical positions into shared vertices
-    /// (glTF: attributes that differ at a seam become per corner).
+    /// Merge vertices with identical positions into shared vertices (any input format:
+    /// attributes that differ between them become per corner)
     #[arg(long)]
     weld: bool,
     /// RING-EXPANDER runs per component (different seed corners); the best ring is kept.

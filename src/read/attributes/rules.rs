@@ -28,7 +28,7 @@ pub(in crate::read) struct Context<'c, 'a> {
     pub positions: &'c crate::read::Positions<'a>,
     pub kept: u32,
     /// The kept triangles, three vertices each.
-    pub kept_triangles: LeWords<'a>,
+    pub kept_triangles: &'c crate::words::Stored<'a>,
     pub copies: LeWords<'a>,
     /// Which of the connectivity's triangle ids hold a triangle: made once, when `ATTR` or
     /// `PART` first needs it.
