@@ -12,7 +12,7 @@ use lrmesh::format::Tag;
 use lrmesh::generate;
 use lrmesh::read::{open, Limits};
 use lrmesh::write::{encode, Connectivity, EncodeOptions};
-use lrmesh::{Error, Mesh, Rule};
+use lrmesh::Mesh;
 
 /// A torus with 40 degenerate triangles of every pattern (a vertex repeated at corners 0
 /// and 1, 1 and 2, 0 and 2, or all three) and a vertex that spans far from the one before.
@@ -42,15 +42,9 @@ fn encoded_with(connectivity: Connectivity) -> Vec<u8> {
 }
 
 /// The message of the [V50] error of `bytes`, `None` if it opens; any other error fails.
+#[track_caller]
 fn v50_message(bytes: &[u8]) -> Option<String> {
-    match open(bytes, &Limits::default()) {
-        Ok(_) => None,
-        Err(Error::Format(e)) => {
-            assert_eq!((e.rule, e.section.as_str()), (Rule(50), "KEPC"), "{e}");
-            Some(e.message)
-        }
-        Err(e) => panic!("{e}"),
-    }
+    rule_message(bytes, 50, "KEPC")
 }
 
 /// [V50] `KEPC` gives the triangles `KEPT` stores (level 0 writes `KEPT`), in fewer bytes.

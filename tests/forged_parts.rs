@@ -14,7 +14,7 @@ use lrmesh::generate;
 use lrmesh::mesh::{Part, Parts};
 use lrmesh::read::{open, Limits};
 use lrmesh::write::{encode, Connectivity, EncodeOptions};
-use lrmesh::{Error, Mesh, Rule};
+use lrmesh::Mesh;
 
 /// A torus whose triangles form three parts, in bands of the input order.
 fn torus() -> Mesh {
@@ -53,15 +53,9 @@ fn runs(bytes: &[u8]) -> (usize, usize) {
 }
 
 /// The message of the [V48] error of `bytes`, `None` if it opens; any other error fails.
+#[track_caller]
 fn v48_message(bytes: &[u8]) -> Option<String> {
-    match open(bytes, &Limits::default()) {
-        Ok(_) => None,
-        Err(Error::Format(e)) => {
-            assert_eq!((e.rule, e.section.as_str()), (Rule(48), "PART"), "{e}");
-            Some(e.message)
-        }
-        Err(e) => panic!("{e}"),
-    }
+    rule_message(bytes, 48, "PART")
 }
 
 /// [V48] The header: a known index encoding, the reserved bytes 0, and with runs the

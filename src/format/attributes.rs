@@ -271,6 +271,28 @@ pub fn packed<W: Words>(words: &W, j: u32, bits: u32) -> u32 {
     (((hi << 32 | lo) >> shift) & ((1u64 << bits) - 1)) as u32
 }
 
+/// The seam tables of seam encoding 0 for `slots` triangle slots, from the entries of the
+/// flagged slots in increasing slot order: `FLAGS`, `RANK`, and `ENTRIES` packed in `bits`
+/// bits each. The writer stores them; a reader of coded seams decodes into them.
+pub fn tables_of(slots: u32, flagged: &[(u32, [u32; 3])], bits: u32) -> [Vec<u32>; 3] {
+    let mut flags = vec![0u32; slots.div_ceil(32) as usize];
+    let mut entries = Vec::with_capacity(3 * flagged.len());
+    for (slot, triple) in flagged {
+        flags[*slot as usize / 32] |= 1 << (slot % 32);
+        entries.extend(triple);
+    }
+    let rank = flags
+        .chunks(RANK_SPAN as usize / 32)
+        .scan(0u32, |before, words| {
+            let r = *before;
+            *before += words.iter().map(|w| w.count_ones()).sum::<u32>();
+            Some(r)
+        })
+        .collect();
+    let entries = pack(&entries, bits);
+    [flags, rank, entries]
+}
+
 /// Packs `fields` of `bits` bits each (1 to 32) as [`packed`] reads them.
 pub fn pack(fields: &[u32], bits: u32) -> Vec<u32> {
     let total = fields.len() as u64 * u64::from(bits);

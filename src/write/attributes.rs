@@ -8,7 +8,7 @@ use super::connectivity::Encoded;
 use crate::corner_table::CornerTable;
 use crate::error::{Error, Result};
 use crate::format::attributes::{
-    bits_for, pack, AttributeHeader, CODED_SEAMS, NORMALIZED, PER_CORNER, RANK_SPAN,
+    bits_for, pack, tables_of, AttributeHeader, CODED_SEAMS, NORMALIZED, PER_CORNER,
 };
 use crate::format::parts::{encode_runs, PartsHeader, RUNS};
 use crate::format::quantized::{Quantizer, MAX_NORMAL_BITS, MAX_VALUE_BITS, PREDICTED, QUANTIZED};
@@ -412,24 +412,10 @@ fn tables_record(
     if flagged.is_empty() {
         return assemble(&header, name, values, &[], &[], &[]);
     }
-    let mut flags = vec![0u32; slots.div_ceil(32) as usize];
-    let mut entries = Vec::with_capacity(3 * flagged.len());
-    for (slot, triple) in flagged {
-        flags[*slot as usize / 32] |= 1 << (slot % 32);
-        entries.extend(triple);
-    }
     header.extra = extra;
     header.flagged = flagged.len() as u32;
     header.entry_bits = bits_for(extra) as u8;
-    let rank: Vec<u32> = flags
-        .chunks(RANK_SPAN as usize / 32)
-        .scan(0u32, |before, words| {
-            let r = *before;
-            *before += words.iter().map(|w| w.count_ones()).sum::<u32>();
-            Some(r)
-        })
-        .collect();
-    let packed = pack(&entries, u32::from(header.entry_bits));
+    let [flags, rank, packed] = tables_of(slots, flagged, u32::from(header.entry_bits));
     assemble(&header, name, values, &flags, &rank, &packed)
 }
 

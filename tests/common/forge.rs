@@ -129,6 +129,21 @@ pub fn format_error(bytes: &[u8]) -> FormatError {
     }
 }
 
+/// The message of the error by which opening `bytes` fails, which must be rule `rule` in
+/// `section`; `None` if it opens. Any other error fails the test. For range-coded streams,
+/// whose damaged bytes may or may not break a rule.
+#[track_caller]
+pub fn rule_message(bytes: &[u8], rule: u8, section: &str) -> Option<String> {
+    match open(bytes, &Limits::default()) {
+        Ok(_) => None,
+        Err(Error::Format(e)) => {
+            assert_eq!((e.rule, e.section.as_str()), (Rule(rule), section), "{e}");
+            Some(e.message)
+        }
+        Err(e) => panic!("{e}"),
+    }
+}
+
 /// Asserts that opening `bytes` fails by rule `rule` in `section` at file offset `offset`,
 /// with `words` in the message.
 #[track_caller]
@@ -316,7 +331,7 @@ pub fn with_seam_tables(
     part: usize,
     extra: Option<u32>,
 ) -> Vec<u8> {
-    use lrmesh::format::attributes::{pack, AttributeHeader};
+    use lrmesh::format::attributes::{bits_for, tables_of, AttributeHeader};
     let file = open(bytes, &Limits::default()).unwrap();
     let a = &file.attributes()[i];
     let end = at + a.stored_bytes() as usize;
@@ -324,27 +339,17 @@ pub fn with_seam_tables(
     assert_eq!(h.seam_encoding(), 1);
     let conn = file.connectivity();
     let v = file.connectivity_vertex_count();
-    let mut flags = vec![0u32; h.slots.div_ceil(32) as usize];
-    let mut entries: Vec<u32> = Vec::new();
+    let mut flagged = Vec::new();
     for t in 0..h.slots {
         let c = conn.triangle_corner(lrmesh::Triangle(t));
         let values = [c, conn.next(c), conn.prev(c)].map(|c| file.value_index(a, c));
         if values.iter().any(|&x| x >= v) {
-            flags[t as usize / 32] |= 1 << (t % 32);
-            entries.extend(values.map(|x| if x < v { 0 } else { x - v + 1 }));
+            flagged.push((t, values.map(|x| if x < v { 0 } else { x - v + 1 })));
         }
     }
-    let rank: Vec<u32> = flags
-        .chunks(8)
-        .scan(0u32, |before, w| {
-            let r = *before;
-            *before += w.iter().map(|x| x.count_ones()).sum::<u32>();
-            Some(r)
-        })
-        .collect();
     let e = extra.unwrap_or(h.extra);
-    let bits = lrmesh::format::attributes::bits_for(e);
-    let words = pack(&entries, bits);
+    let bits = bits_for(e);
+    let [flags, rank, words] = tables_of(h.slots, &flagged, bits);
     forge(bytes, Tag::ATTR, |p| {
         p[at + 21] = 0;
         p[at + 5] = bits as u8;

@@ -5,7 +5,7 @@
 use super::rules::Context;
 use super::Packed;
 use crate::error::{Result, Rule};
-use crate::format::attributes::{pack, AttributeHeader, Seams, RANK_SPAN};
+use crate::format::attributes::{tables_of, AttributeHeader, Seams};
 use crate::geometry::{seams, values};
 use crate::read::fields::Fields;
 use crate::read::view::Connectivity;
@@ -71,37 +71,28 @@ pub(super) fn decode<'a>(
     let at_corners = seams::decode(&s, h.extra, stream, base + start)
         .map_err(|(offset, m)| err((offset as usize).saturating_sub(base).min(f.len()), m))?;
     let v = cx.vertices;
-    let mut flags = vec![0u32; (h.slots as usize).div_ceil(32)];
-    let mut entries = Vec::new();
-    for (t, tri) in at_corners.iter().enumerate() {
-        if tri.iter().any(|&x| x >= v) {
-            flags[t / 32] |= 1 << (t % 32);
-            entries.extend(tri.map(|x| if x < v { 0 } else { x - v + 1 }));
-        }
-    }
-    let flagged = entries.len() / 3;
-    if flagged != h.flagged as usize {
+    let flagged: Vec<(u32, [u32; 3])> = at_corners
+        .iter()
+        .enumerate()
+        .filter(|(_, tri)| tri.iter().any(|&x| x >= v))
+        .map(|(t, tri)| (t as u32, tri.map(|x| if x < v { 0 } else { x - v + 1 })))
+        .collect();
+    if flagged.len() != h.flagged as usize {
         return Err(err(
             part.start,
             format!(
-                "{} flagged triangles, the coded seams give {flagged}",
-                h.flagged
+                "{} flagged triangles, the coded seams give {}",
+                h.flagged,
+                flagged.len()
             ),
         ));
     }
-    let rank = flags
-        .chunks(RANK_SPAN as usize / 32)
-        .scan(0u32, |before, words| {
-            let r = *before;
-            *before += words.iter().map(|w| w.count_ones()).sum::<u32>();
-            Some(r)
-        })
-        .collect();
     let bits = u32::from(h.entry_bits);
+    let [flags, rank, entries] = tables_of(h.slots, &flagged, bits);
     Ok(Seams {
         flags: Packed::Decoded(flags),
         rank: Packed::Decoded(rank),
-        entries: Packed::Decoded(pack(&entries, bits)),
+        entries: Packed::Decoded(entries),
         bits,
     })
 }

@@ -212,12 +212,11 @@ fn record<'a>(
     let Some(values_len) = values_len else {
         return Err(err(8, "counts overflow".into()));
     };
-    let coded_len = match coded_seams {
-        true => {
-            let part = (at as u64 + start as u64 + values_len).min(bytes.len() as u64);
-            Some(coded::seams_len(f, part as usize, i)?)
-        }
-        false => None,
+    let coded_len = if coded_seams {
+        let part = (at as u64 + start as u64 + values_len).min(bytes.len() as u64);
+        Some(coded::seams_len(f, part as usize, i)?)
+    } else {
+        None
     };
     let Some(layout) = h.layout_with_parts(values_len, coded_len) else {
         return Err(err(8, "counts overflow".into()));
