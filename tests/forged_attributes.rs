@@ -10,7 +10,7 @@ use lrmesh::format::attributes::AttributeHeader;
 use lrmesh::format::Tag;
 use lrmesh::mesh::{Attribute, Part, Parts, Semantic, Values};
 use lrmesh::read::{open, Limits};
-use lrmesh::write::Connectivity;
+use lrmesh::write::{encode, Connectivity, EncodeOptions};
 use lrmesh::{CornerOps, Mesh};
 
 /// The cube of `spec/vectors/seamed_cube.obj`: texture coordinates per corner with seams,
@@ -310,7 +310,14 @@ fn v42_copies_share_per_vertex_values() {
 /// [V43] `PART`: header, labels, indices.
 #[test]
 fn v43_parts() {
-    let bytes = encoded(&cube(), Connectivity::Lr);
+    // Level 0: the labels as JSON (from level 1 they are coded, [V51]).
+    let options = EncodeOptions {
+        connectivity: Connectivity::Lr,
+        keep_order: true,
+        level: 0,
+        ..EncodeOptions::default()
+    };
+    let bytes = encode(&cube(), &options).unwrap();
     let at = section_at(&bytes, Tag::PART);
     let p = payload(&bytes, Tag::PART);
     let (parts, slots, bits, json) = (get(&p, 0), get(&p, 4), get(&p, 8), get(&p, 12) as usize);

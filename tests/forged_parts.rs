@@ -1,4 +1,5 @@
-//! Forged containers for the runs of `PART` (FORMAT.md §3.10.1: [V48]). How a rule is
+//! Forged containers for the runs and the coded labels of `PART` (FORMAT.md §3.10.1,
+//! §3.10.2: [V48], [V51]). How a rule is
 //! broken and what the reader must report: `tests/common/forge.rs`. The runs are range
 //! coded, so a damaged stream is found by changing its bytes one at a time: the tests fail
 //! if no change reaches a check.
@@ -8,6 +9,7 @@ mod common;
 use std::collections::BTreeSet;
 
 use common::forge::*;
+use lrmesh::format::labels::{CODED, JSON};
 use lrmesh::format::parts::{PartsHeader, HEADER_LEN, RUNS};
 use lrmesh::format::Tag;
 use lrmesh::generate;
@@ -76,7 +78,7 @@ fn v48_header_and_length() {
         &forge(&bytes, Tag::PART, |p| p[11] = 1),
         48,
         "PART",
-        at + 10,
+        at + 11,
         "reserved",
     );
     breaks(
@@ -127,6 +129,91 @@ fn v48_damaged_runs_are_refused() {
     assert!(m.contains("the stream ends before slot"), "{m}");
 }
 
+/// The message of the [V51] error of `bytes`, `None` if it opens; any other error fails.
+#[track_caller]
+fn v51_message(bytes: &[u8]) -> Option<String> {
+    rule_message(bytes, 51, "PART")
+}
+
+/// [V51] A known labels encoding, and no more parts than the coded labels may decode to.
+#[test]
+fn v51_labels_encoding_and_part_count() {
+    let bytes = edgebreaker(6);
+    let at = section_at(&bytes, Tag::PART);
+    let p = payload(&bytes, Tag::PART);
+    let h = PartsHeader::parse(&p);
+    assert_eq!(h.labels, CODED);
+    breaks(
+        &forge(&bytes, Tag::PART, |p| p[10] = 2),
+        51,
+        "PART",
+        at + 10,
+        "unknown labels encoding 2",
+    );
+    // A million parts (20 bits per index; the runs do not depend on it) from a stream of
+    // a few bytes: refused before anything is allocated for them.
+    let bad = forge(&bytes, Tag::PART, |p| {
+        put(p, 0, 1_000_000);
+        p[8] = 20;
+    });
+    breaks(&bad, 51, "PART", at + 16, "1000000 parts exceed the");
+}
+
+/// [V51] Damaged coded labels: a reference to a name not spelled yet, a library without a
+/// name, labels beyond the bound, an overrun; found by changing the stream's bytes.
+#[test]
+fn v51_damaged_labels_are_refused() {
+    let bytes = edgebreaker(6);
+    let h = PartsHeader::parse(&payload(&bytes, Tag::PART));
+    let mut seen = BTreeSet::new();
+    for i in HEADER_LEN..HEADER_LEN + h.json_len as usize {
+        for x in [0x01u8, 0x10, 0x80, 0xFF] {
+            let bad = forge(&bytes, Tag::PART, |p| p[i] ^= x);
+            if let Some(m) = v51_message(&bad) {
+                seen.insert(m.split(": ").last().unwrap().to_string());
+            }
+        }
+    }
+    assert!(
+        seen.iter().any(|s| s.contains("a reference to none of")),
+        "{seen:?}"
+    );
+    // The stream cut short: the decoder reads zeros past its end.
+    let bad = forge(&bytes, Tag::PART, |p| {
+        let j = h.json_len as usize;
+        p.drain(HEADER_LEN + 1..HEADER_LEN + j);
+        put(p, 12, 1);
+    });
+    let m = v51_message(&bad).expect("a cut stream is refused");
+    assert!(m.contains("ends inside") || m.contains("none of"), "{m}");
+}
+
+/// Coded labels decode to the labels of the JSON of level 0, and are shorter; a file of
+/// any connectivity gets them from level 1.
+#[test]
+fn coded_labels_decode_right() {
+    let (json, coded) = (edgebreaker(0), edgebreaker(6));
+    let (a, b) = (
+        PartsHeader::parse(&payload(&json, Tag::PART)),
+        PartsHeader::parse(&payload(&coded, Tag::PART)),
+    );
+    assert_eq!((a.labels, b.labels), (JSON, CODED));
+    assert!(
+        b.json_len < a.json_len / 2,
+        "{} vs {}",
+        b.json_len,
+        a.json_len
+    );
+    let (a, b) = (
+        open(&json, &Limits::default()).unwrap().to_mesh(),
+        open(&coded, &Limits::default()).unwrap().to_mesh(),
+    );
+    assert_eq!(a.parts.unwrap().parts, b.parts.unwrap().parts);
+    let lr = encode(&torus(), &EncodeOptions::default()).unwrap();
+    assert_eq!(PartsHeader::parse(&payload(&lr, Tag::PART)).labels, CODED);
+    assert_eq!(lr[10], 3, "minor version 3");
+}
+
 /// The runs decode to the parts of the packed section of level 0, and are shorter.
 #[test]
 fn the_files_forged_from_decode_right() {
@@ -142,17 +229,20 @@ fn the_files_forged_from_decode_right() {
 }
 
 /// The fuzz target `container_forged` starts from containers with runs (and with packed
-/// indices): its byte edits reach the runs' decoder.
+/// indices, JSON and coded labels): its byte edits reach both decoders.
 #[test]
 fn the_fuzz_target_reaches_runs() {
-    let mut encodings = BTreeSet::new();
+    let (mut encodings, mut labels) = (BTreeSet::new(), BTreeSet::new());
     for choice in 0..=255u8 {
         let bytes = lrmesh::fuzz_checks::forged_base(choice);
         if section_at_opt(&bytes, Tag::PART) {
-            encodings.insert(PartsHeader::parse(&payload(&bytes, Tag::PART)).encoding);
+            let h = PartsHeader::parse(&payload(&bytes, Tag::PART));
+            encodings.insert(h.encoding);
+            labels.insert(h.labels);
         }
     }
     assert_eq!(encodings, BTreeSet::from([0, RUNS]));
+    assert_eq!(labels, BTreeSet::from([JSON, CODED]));
 }
 
 fn section_at_opt(bytes: &[u8], tag: Tag) -> bool {

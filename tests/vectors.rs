@@ -138,6 +138,14 @@ fn attribute_listing(name: &str, bytes: &[u8]) -> Option<String> {
         file.kept_triangle_count()
     )
     .unwrap();
+    if let Some(p) = file.parts() {
+        for (i, part) in p.labels.parts.iter().enumerate() {
+            writeln!(out, "# part {i} {}", serde_json::to_string(part).unwrap()).unwrap();
+        }
+        for lib in &p.labels.material_libraries {
+            writeln!(out, "# library {}", serde_json::to_string(lib).unwrap()).unwrap();
+        }
+    }
     let names: Vec<String> = (0..file.attributes().len())
         .map(|a| format!("a{a}"))
         .collect();

@@ -8,6 +8,7 @@
 
 pub mod attributes;
 pub mod kept;
+pub mod labels;
 pub mod layout;
 mod metadata;
 pub mod parts;
@@ -22,9 +23,10 @@ pub const MAGIC: [u8; 8] = [0x89, b'L', b'R', b'M', b'\r', b'\n', 0x1a, b'\n'];
 /// Major version written and read. A reader rejects any other major version.
 pub const MAJOR: u16 = 1;
 /// Newest minor version written. Readers accept any minor version of their major version.
-pub const MINOR: u16 = 1;
+pub const MINOR: u16 = 3;
 
-/// The minor version a file of these sections (tags and payloads) is written with: 2 with a
+/// The minor version a file of these sections (tags and payloads) is written with: 3 with
+/// `PART` labels coded; 2 with a
 /// position encoding of version 1.2 (`GEOM` encodings 2 to 5), an `ATTR` record of value
 /// encoding 1 or 2 or of seam encoding 1, `PART` runs or `KEPC`; 1 with a section of version 1.1 (`ATTR`, `PART`), 0 otherwise,
 /// so that a file says the oldest version that reads it.
@@ -39,6 +41,7 @@ pub fn minor_for<'a>(sections: impl IntoIterator<Item = (Tag, &'a [u8])>) -> u16
         .map(|&(tag, bytes)| match tag {
             Tag::GEOM if bytes.len() >= 4 && le_u32(bytes, 0) >= 2 => 2,
             Tag::ATTR if vertices.is_some_and(|v| attributes::any_of_version_1_2(bytes, v)) => 2,
+            Tag::PART if bytes.len() >= 11 && bytes[10] == labels::CODED => 3,
             Tag::PART if bytes.len() >= 10 && bytes[9] == parts::RUNS => 2,
             Tag::KEPC => 2,
             Tag::ATTR | Tag::PART => 1,

@@ -1,11 +1,11 @@
-//! The `PART` section (FORMAT.md §3.10): the parts' labels as JSON, then the part of every
+//! The `PART` section (FORMAT.md §3.10): the parts' labels as JSON or coded (`labels`), then the part of every
 //! triangle slot, as packed indices (index encoding 0) or as range-coded runs (1).
 
 use super::attributes::{bits_for, packed};
 use super::le_u32;
 use crate::words::Words;
 
-/// Bytes of the header: `P`, `S`, `b` and the index encoding, `J`.
+/// Bytes of the header: `P`, `S`, `b`, the index and labels encodings, `J`.
 pub const HEADER_LEN: usize = 16;
 /// Index encoding 0: `b` bits per slot, read in place.
 pub const PACKED: u8 = 0;
@@ -23,8 +23,11 @@ pub struct PartsHeader {
     pub bits: u32,
     /// How the indices are stored: [`PACKED`] or [`RUNS`].
     pub encoding: u8,
-    /// Bytes 10 and 11, reserved: 0.
-    pub reserved: u16,
+    /// How the labels are stored: [`super::labels::JSON`] or [`super::labels::CODED`]
+    /// (byte 10, version 1.3).
+    pub labels: u8,
+    /// Byte 11, reserved: 0.
+    pub reserved: u8,
     /// Bytes of the JSON (`J`).
     pub json_len: u32,
 }
@@ -37,7 +40,8 @@ impl PartsHeader {
             slots: le_u32(bytes, 4),
             bits: u32::from(bytes[8]),
             encoding: bytes[9],
-            reserved: u16::from_le_bytes([bytes[10], bytes[11]]),
+            labels: bytes[10],
+            reserved: bytes[11],
             json_len: le_u32(bytes, 12),
         }
     }
@@ -47,8 +51,7 @@ impl PartsHeader {
         let mut out = Vec::with_capacity(HEADER_LEN);
         out.extend_from_slice(&self.parts.to_le_bytes());
         out.extend_from_slice(&self.slots.to_le_bytes());
-        out.extend_from_slice(&[self.bits as u8, self.encoding]);
-        out.extend_from_slice(&self.reserved.to_le_bytes());
+        out.extend_from_slice(&[self.bits as u8, self.encoding, self.labels, self.reserved]);
         out.extend_from_slice(&self.json_len.to_le_bytes());
         out
     }

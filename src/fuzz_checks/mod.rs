@@ -18,7 +18,7 @@ pub use round_trip::{
 use crate::io::{read_mesh_bytes, MeshFormat, ReadOptions};
 use crate::ops::{self, CornerOps, Plane};
 use crate::read::{open, Limits};
-use crate::write::{assemble, encode, Connectivity, EncodeOptions};
+use crate::write::{assemble, encode, Connectivity, EncodeOptions, DEFAULT_LEVEL};
 use crate::{generate, Vertex};
 
 /// The fuzz targets, by name.
@@ -127,7 +127,8 @@ pub fn container_forged(data: &[u8]) {
 
 /// The valid container [`container_forged`] starts from: bits 0–1 of `choice` the kind,
 /// 2–3 the torus's size, 4 holes and defects, 5 the input order kept, 6 positions and
-/// attribute values quantized (predicted values in Edgebreaker), 7 seams and parts.
+/// attribute values quantized (predicted values in Edgebreaker), 7 seams and parts (with
+/// JSON labels at level 0 on the smallest torus without holes, else coded).
 pub fn forged_base(choice: u8) -> Vec<u8> {
     let kind = [
         Connectivity::Lr,
@@ -152,6 +153,13 @@ pub fn forged_base(choice: u8) -> Vec<u8> {
         // quantized positions.
         normal_bits: (choice & 0x40 != 0).then_some(10),
         texcoord_bits: (choice & 0x40 != 0).then_some(12),
+        // Level 0 (JSON labels in `PART`, exact or 16-bit raw positions) for the smallest
+        // torus with parts and without holes; the default level (coded labels) otherwise.
+        level: if choice & 0x9C == 0x80 {
+            0
+        } else {
+            DEFAULT_LEVEL
+        },
         ..EncodeOptions::default()
     };
     encode(&mesh, &options).expect("a generated mesh encodes")

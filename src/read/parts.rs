@@ -1,10 +1,11 @@
-//! The `PART` section (rules V43, V48): the parts' labels, and the part of every triangle
+//! The `PART` section (rules V43, V48, V51): the parts' labels, and the part of every triangle
 //! slot, read in place (packed) or decoded when the container is opened (runs).
 
 use super::attributes::Context;
 use super::fields::Fields;
 use super::Sections;
 use crate::error::{Result, Rule};
+use crate::format::labels;
 use crate::format::parts::{decode_runs, part_of, PartsHeader, HEADER_LEN, PACKED, RUNS};
 use crate::format::Tag;
 use crate::mesh::Parts;
@@ -77,8 +78,15 @@ pub(super) fn parts<'a>(
             format!("unknown index encoding {}", h.encoding),
         ));
     }
+    if h.labels > labels::CODED {
+        return Err(f.err(
+            10,
+            Rule(51),
+            format!("unknown labels encoding {}", h.labels),
+        ));
+    }
     if h.reserved != 0 {
-        return Err(f.err(10, Rule(48), "reserved field is not zero"));
+        return Err(f.err(11, Rule(48), "reserved field is not zero"));
     }
     let json_end = HEADER_LEN + h.json_len as usize;
     let runs_len = if h.encoding == PACKED {
@@ -89,20 +97,30 @@ pub(super) fn parts<'a>(
         f.expect_len(Some(json_end as u64 + 4 + u64::from(n)), Rule(48))?;
         n as usize
     };
-    let labels: Parts = serde_json::from_slice(&f.bytes()[HEADER_LEN..json_end]).map_err(|e| {
-        f.err(
-            HEADER_LEN,
-            rule,
-            format!("the labels are not a JSON object of parts: {e}"),
-        )
-    })?;
-    if labels.parts.len() as u64 != u64::from(h.parts) {
-        return Err(f.err(
-            0,
-            rule,
-            format!("{} parts, the JSON lists {}", h.parts, labels.parts.len()),
-        ));
-    }
+    let text = &f.bytes()[HEADER_LEN..json_end];
+    let labels: Parts = if h.labels == labels::CODED {
+        let base = f.section.offset as usize + HEADER_LEN;
+        labels::decode(text, base, h.parts).map_err(|(at, m)| {
+            let at = (at as usize).saturating_sub(f.section.offset as usize);
+            f.err(at.min(f.len()), Rule(51), m)
+        })?
+    } else {
+        let labels: Parts = serde_json::from_slice(text).map_err(|e| {
+            f.err(
+                HEADER_LEN,
+                rule,
+                format!("the labels are not a JSON object of parts: {e}"),
+            )
+        })?;
+        if labels.parts.len() as u64 != u64::from(h.parts) {
+            return Err(f.err(
+                0,
+                rule,
+                format!("{} parts, the JSON lists {}", h.parts, labels.parts.len()),
+            ));
+        }
+        labels
+    };
     let indices = if h.encoding == PACKED {
         Indices::Packed {
             bits: h.bits,

@@ -10,6 +10,7 @@ use crate::error::{Error, Result};
 use crate::format::attributes::{
     bits_for, pack, tables_of, AttributeHeader, CODED_SEAMS, NORMALIZED, PER_CORNER,
 };
+use crate::format::labels;
 use crate::format::parts::{encode_runs, PartsHeader, RUNS};
 use crate::format::quantized::{Quantizer, MAX_NORMAL_BITS, MAX_VALUE_BITS, PREDICTED, QUANTIZED};
 use crate::geometry::seams;
@@ -436,20 +437,36 @@ fn assemble(
     out
 }
 
-/// The `PART` payload: the header, the parts as JSON, then the part of every slot: packed
+/// The `PART` payload: the header, the labels (JSON, or with `coded`, from level 1, the
+/// coded labels of FORMAT.md §3.10.2 when shorter), then the part of every slot: packed
 /// (index encoding 0), or with `runs` (an Edgebreaker container from level 1) the
 /// range-coded runs of FORMAT.md §3.10.1 when they are shorter.
-pub(super) fn part_section(mesh: &Mesh, corners: &Corners, runs: bool) -> Result<Option<Vec<u8>>> {
+pub(super) fn part_section(
+    mesh: &Mesh,
+    corners: &Corners,
+    runs: bool,
+    coded: bool,
+) -> Result<Option<Vec<u8>>> {
     let Some(parts) = &mesh.parts else {
         return Ok(None);
     };
-    let json = serde_json::to_vec(parts)
+    let mut json = serde_json::to_vec(parts)
         .map_err(|e| Error::Internal(format!("parts do not serialise: {e}")))?;
+    let mut label_encoding = labels::JSON;
+    if coded {
+        let stream = labels::encode(parts);
+        let fits = u32::try_from(stream.len())
+            .is_ok_and(|n| labels::decoded_size(parts) <= labels::decoded_bound(n));
+        if fits && stream.len() < json.len() {
+            (json, label_encoding) = (stream, labels::CODED);
+        }
+    }
     let count = parts.parts.len() as u32;
     let mut header = PartsHeader {
         parts: count,
         slots: corners.slots,
         bits: PartsHeader::bits_for_parts(count),
+        labels: label_encoding,
         json_len: u32::try_from(json.len())
             .map_err(|_| Error::Unsupported("part labels beyond 4 GiB of JSON".into()))?,
         ..PartsHeader::default()

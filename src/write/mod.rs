@@ -295,7 +295,7 @@ fn sections(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<Se
             sections.push((Tag::ATTR, Flags::NONE, payload));
         }
         let runs = encoded.kind == crate::format::Kind::EDGEBREAKER && options.level > 0;
-        if let Some(payload) = attributes::part_section(mesh, &corners, runs)? {
+        if let Some(payload) = attributes::part_section(mesh, &corners, runs, options.level > 0)? {
             sections.push((Tag::PART, Flags::NONE, payload));
         }
     }
