@@ -134,6 +134,36 @@ impl CornerTable {
         })
     }
 
+    /// The corner table of non-degenerate triangles over `vertex_count` vertices whose
+    /// opposites `o` are already known (the Edgebreaker decoder glues edges as it goes):
+    /// exactly what [`CornerTable::build`] gives, without matching edges, when `o` pairs
+    /// consistent corners, every vertex has one fan and no two edges of a fan end at the
+    /// same vertex (then `build` would match the same pairs); else built by `build`.
+    pub(crate) fn from_glued(
+        vertex_count: u32,
+        triangles: Vec<[u32; 3]>,
+        o: Vec<u32>,
+    ) -> Result<CornerTable> {
+        let v = triangles.into_flattened();
+        match glued_c_table(vertex_count, &v, &o) {
+            Some(c) => Ok(CornerTable {
+                input_triangle: (0..(v.len() / 3) as u32).collect(),
+                v,
+                o,
+                c,
+                input_vertices: vertex_count,
+                copy_of: Vec::new(),
+                kept_aside: Vec::new(),
+                conversion: Conversion::default(),
+            }),
+            None => {
+                let triangles: Vec<[u32; 3]> =
+                    v.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
+                CornerTable::build(vertex_count as usize, &triangles)
+            }
+        }
+    }
+
     /// Builds the corner table of a mesh's triangles (see [`CornerTable::build`]).
     ///
     /// # Errors
@@ -270,6 +300,82 @@ fn match_edges(nv: u32, v: &[u32]) -> (Vec<u32>, u32, u32) {
         }
     }
     (o, inconsistent, nonmanifold)
+}
+
+/// The `C` table of [`CornerTable::from_glued`] (the corner `split_fans` picks: the first of
+/// the fan of the lowest corner of each vertex), or `None` when `o` is not what matching the
+/// edges of non-degenerate triangles `v` (ids below `nv`) gives without a vertex copy.
+fn glued_c_table(nv: u32, v: &[u32], o: &[u32]) -> Option<Vec<u32>> {
+    let corners = v.len();
+    if o.len() != corners || v.iter().any(|&x| x >= nv) {
+        return None;
+    }
+    // Pairs of corners of other triangles, whose edges join the same vertices the other way.
+    for (c, &d) in o.iter().enumerate() {
+        let (c, d) = (c as u32, d as usize);
+        if d != NONE as usize
+            && (d >= corners
+                || o[d] != c
+                || d as u32 / 3 == c / 3
+                || v[next(c) as usize] != v[prev(d as u32) as usize]
+                || v[prev(c) as usize] != v[next(d as u32) as usize])
+        {
+            return None;
+        }
+    }
+    // With `o` an involution, swinging is injective: every walk below ends.
+    let swing = |c: u32| match o[next(c) as usize] {
+        NONE => NONE,
+        d => next(d),
+    };
+    let unswing = |c: u32| match o[prev(c) as usize] {
+        NONE => NONE,
+        d => prev(d),
+    };
+    let mut c_table = vec![NONE; nv as usize];
+    // The last vertex whose fan had this one as a neighbour.
+    let mut stamp = vec![NONE; nv as usize];
+    let mut in_fans = 0usize;
+    for c in 0..corners as u32 {
+        let a = v[c as usize];
+        if c_table[a as usize] != NONE {
+            continue;
+        }
+        let (mut first, mut closed) = (c, false);
+        loop {
+            match unswing(first) {
+                NONE => break,
+                back if back == c => {
+                    (first, closed) = (c, true);
+                    break;
+                }
+                back => first = back,
+            }
+        }
+        c_table[a as usize] = first;
+        let (mut fan, mut neighbours) = (0usize, 0usize);
+        let mut d = first;
+        loop {
+            fan += 1;
+            for b in [v[next(d) as usize], v[prev(d) as usize]] {
+                if stamp[b as usize] != a {
+                    stamp[b as usize] = a;
+                    neighbours += 1;
+                }
+            }
+            d = swing(d);
+            if d == NONE || d == first {
+                break;
+            }
+        }
+        // A fan of k corners has k edges if closed, k + 1 if open: one neighbour each.
+        if neighbours != fan + usize::from(!closed) {
+            return None;
+        }
+        in_fans += fan;
+    }
+    // Every corner in the one fan of its vertex.
+    (in_fans == corners).then_some(c_table)
 }
 
 /// Gives every fan its own vertex (copies for the second and later fans of a vertex) and builds

@@ -47,6 +47,12 @@ fn leb128(bytes: &[u8], pos: &mut usize, what: &str) -> Result<u64> {
 /// [`crate::Error::Parse`] (format `"Edgebreaker"`) with the byte offset and what is wrong,
 /// when the stream is malformed, truncated or exceeds `limits`.
 pub fn decode(bytes: &[u8], limits: &Limits) -> Result<Decoded> {
+    decode_glued(bytes, limits).map(|(decoded, _)| decoded)
+}
+
+/// [`decode`], with the opposite of every corner as the pass glued it (`NONE` at a free
+/// edge): what [`crate::CornerTable::from_glued`] needs.
+pub(crate) fn decode_glued(bytes: &[u8], limits: &Limits) -> Result<(Decoded, Vec<u32>)> {
     if bytes.len() < 2 || bytes[0] != MAGIC {
         return Err(malformed(0, "not an Edgebreaker stream (bad magic byte)"));
     }
@@ -98,15 +104,16 @@ pub fn decode(bytes: &[u8], limits: &Limits) -> Result<Decoded> {
         return Err(malformed(td.offset(), "topology stream ends early"));
     }
     let mut cd = Decoder::new(clers_bytes, pos + topo_len as usize);
-    let (triangles, _) = rebuild(
+    let rebuilt = rebuild(
         &mut cd,
         &mut Unknown,
         &topology,
         nt as u32,
         referenced as u32,
     )?;
-    Ok(Decoded {
+    let decoded = Decoded {
         vertex_count: nv as u32,
-        triangles,
-    })
+        triangles: rebuilt.triangles,
+    };
+    Ok((decoded, rebuilt.opposites))
 }

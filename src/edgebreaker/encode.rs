@@ -309,7 +309,11 @@ pub fn encode(table: &CornerTable) -> Result<Encoded> {
         holes: &plan.holes,
         hi: plan.holes.len(),
     };
-    let (rebuilt, tally) = rebuild(&mut clers, &mut known, &plan.topology, nt, plan.referenced)
+    let super::rebuild::Rebuilt {
+        triangles: rebuilt,
+        tally,
+        ..
+    } = rebuild(&mut clers, &mut known, &plan.topology, nt, plan.referenced)
         .map_err(|e| Error::Internal(format!("Edgebreaker encoder could not rebuild: {e}")))?;
     let clers = clers.finish();
     // The stream must give back the table: check every corner (linear, and cheap next to

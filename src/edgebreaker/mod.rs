@@ -65,6 +65,7 @@ use crate::error::{Error, Location, ParseError, Result};
 use crate::CornerTable;
 
 pub use decode::decode;
+pub(crate) use decode::decode_glued;
 pub use encode::encode;
 
 /// Edgebreaker symbols as stored internally (not an on-disk code: symbols are range coded).

@@ -20,16 +20,17 @@ pub(super) fn edgebreaker_table(
         max_triangles: limits.max_edgebreaker_triangles,
         max_vertices: limits.max_edgebreaker_vertices,
     };
-    let decoded = crate::edgebreaker::decode(f.bytes(), &eb_limits).map_err(|e| match e {
-        Error::Parse(p) => {
-            let at = match p.location {
-                Location::Byte(b) => b as usize,
-                _ => 0,
-            };
-            f.err(at, rule, p.message)
-        }
-        other => other,
-    })?;
+    let (decoded, opposites) =
+        crate::edgebreaker::decode_glued(f.bytes(), &eb_limits).map_err(|e| match e {
+            Error::Parse(p) => {
+                let at = match p.location {
+                    Location::Byte(b) => b as usize,
+                    _ => 0,
+                };
+                f.err(at, rule, p.message)
+            }
+            other => other,
+        })?;
     if decoded.vertex_count != m {
         // The vertex count is the first LEB128 field, after the magic and version bytes.
         return Err(f.err(
@@ -53,7 +54,7 @@ pub(super) fn edgebreaker_table(
             ),
         ));
     }
-    let table = CornerTable::build(m as usize, &decoded.triangles)?;
+    let table = CornerTable::from_glued(m, decoded.triangles, opposites)?;
     if table.conversion().vertex_copies != 0 {
         return Err(f.err(
             0,

@@ -60,15 +60,23 @@ pub(crate) struct Tally {
     pub holes: u64,
 }
 
-/// Runs the reverse pass over `nt` triangles and `referenced` vertices with topology `topo`;
-/// returns the triangles in decode order.
+/// What the pass rebuilds: the triangles in decode order and the edges it glued.
+pub(crate) struct Rebuilt {
+    pub triangles: Vec<[u32; 3]>,
+    /// `c.o` of every corner `c` of the triangles, [`crate::ids::NONE`] at an edge left
+    /// free.
+    pub opposites: Vec<u32>,
+    pub tally: Tally,
+}
+
+/// Runs the reverse pass over `nt` triangles and `referenced` vertices with topology `topo`.
 pub(crate) fn rebuild<B: Bits, K: Known>(
     b: &mut B,
     k: &mut K,
     topo: &Topology,
     nt: u32,
     referenced: u32,
-) -> Result<(Vec<[u32; 3]>, Tally)> {
+) -> Result<Rebuilt> {
     if u32::fits(3 * nt as u64) && !force_wide() {
         run::<B, K, u32>(b, k, topo, nt, referenced)
     } else {
@@ -125,5 +133,50 @@ mod tests {
         FORCE_WIDE.with(|f| f.set(false));
         assert_eq!(narrow.bytes, wide.bytes);
         assert_eq!(narrow_dec, wide_dec);
+    }
+}
+
+#[cfg(all(test, feature = "generate"))]
+mod glued_tests {
+    use crate::edgebreaker::{decode_glued, encode, Limits};
+    use crate::generate::{self, Rng};
+    use crate::ids::NONE;
+    use crate::CornerTable;
+
+    /// The table from the decoder's glued edges is the table built from its triangles, on
+    /// meshes with handles, holes, components and defects, and when the glued edges are
+    /// damaged (then it is built from the triangles).
+    #[test]
+    fn glued_table_is_the_built_table() {
+        let mut rng = Rng::new(5);
+        let mut mesh = generate::irregular_torus(2000, 3);
+        generate::append(&mut mesh, &generate::torus(4, 6));
+        for _ in 0..2 {
+            let t = rng.below(mesh.triangles.len() as u32) as usize;
+            if let Some(u) = generate::far_triangle(&mesh, t, &mut rng) {
+                generate::add_handle(&mut mesh, t, u);
+            }
+        }
+        generate::punch_holes(&mut mesh, 4, &mut rng);
+        generate::add_defects(&mut mesh, 3, &mut rng);
+        let table = CornerTable::from_mesh(&mesh).unwrap();
+        let bytes = encode(&table).unwrap().bytes;
+        let (decoded, o) = decode_glued(&bytes, &Limits::default()).unwrap();
+        let nv = decoded.vertex_count;
+        let built = CornerTable::build(nv as usize, &decoded.triangles).unwrap();
+        let glued = CornerTable::from_glued(nv, decoded.triangles.clone(), o.clone()).unwrap();
+        assert_eq!(glued, built);
+        // An edge left unglued, every edge unglued, a pair glued across the wrong corners.
+        let c = o.iter().position(|&d| d != NONE).unwrap();
+        let mut one = o.clone();
+        (one[c], one[o[c] as usize]) = (NONE, NONE);
+        let mut wrong = o.clone();
+        let d = o[c] as usize;
+        let (c2, d2) = (c - c % 3 + (c + 1) % 3, d - d % 3 + (d + 1) % 3);
+        (wrong[c], wrong[d], wrong[c2], wrong[d2]) = (c2 as u32, c as u32, NONE, NONE);
+        for damaged in [one, vec![NONE; o.len()], wrong] {
+            let t = CornerTable::from_glued(nv, decoded.triangles.clone(), damaged).unwrap();
+            assert_eq!(t, built);
+        }
     }
 }

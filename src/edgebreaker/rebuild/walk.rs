@@ -5,7 +5,7 @@
 
 use super::chain::{next_prev, ChainWord, Slot, State, Step};
 use super::model::{Model, HIST};
-use super::{Known, Tally};
+use super::{Known, Rebuilt, Tally};
 use crate::corner_table::NONE;
 use crate::edgebreaker::coder::Bits;
 use crate::edgebreaker::{malformed, next, prev, sym, Topology};
@@ -202,7 +202,7 @@ pub(super) fn run<B: Bits, K: Known, W: ChainWord>(
     topo: &Topology,
     nt: u32,
     referenced: u32,
-) -> Result<(Vec<[u32; 3]>, Tally)> {
+) -> Result<Rebuilt> {
     let mut st = State::<W> {
         slots: vec![
             Slot {
@@ -303,5 +303,11 @@ pub(super) fn run<B: Bits, K: Known, W: ChainWord>(
     if st.v.as_flattened().contains(&NONE) {
         return Err(malformed(b.offset(), "corner without a vertex"));
     }
-    Ok((st.v, tally))
+    // `c.o` is `d1[c.p].p` (see `State`).
+    let opposites = (0..st.slots.len() as u32).map(|c| st.opposite(c)).collect();
+    Ok(Rebuilt {
+        triangles: st.v,
+        opposites,
+        tally,
+    })
 }
