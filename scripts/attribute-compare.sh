@@ -15,10 +15,15 @@
 #   kept, since Draco merges equal points and drops degenerate triangles silently: its file
 #   decoded to OBJ by `draco_decoder`, `v` and `f` lines, next to lrmesh's vertices and
 #   triangles (every input triangle, degenerate ones included).
-# Ratios are lrmesh / Draco (below 1: lrmesh smaller); the median rows take each column's
-# median over the meshes.
+# - OpenCTM: `ctmconv IN OUT.ctm --method MG2 --level 9 --vprec S/(2^N - 1) --nprec
+#   2/(2^QN - 1) --tprec 1/(2^QT - 1)`, S the largest extent of the positions (Draco's grid
+#   step); the normal and texture steps are those of QN bits over [-1, 1] and QT bits over
+#   [0, 1], close to (not exactly) Draco's octahedral and bounding-box grids. OpenCTM keeps
+#   one vertex per distinct position, normal and texture coordinate, and every triangle.
+# Ratios are lrmesh / Draco and OpenCTM / Draco (below 1: smaller than Draco); the median
+# rows take each column's median over the meshes.
 #
-# Usage: scripts/attribute-compare.sh [--markdown]
+# Usage: scripts/attribute-compare.sh [--markdown]   (needs draco, openctm-tools and jq)
 #   ATTRIBUTE_COMPARE_MESHES="a.obj b.obj": other meshes than the corpus OBJ files with
 #   attributes (and /tmp/am/WusonOBJ.obj, /tmp/am/engine.obj when present: assimp's test
 #   models, `apt-get download assimp-testmodels`; engine is glTF2/2CylinderEngine converted
@@ -31,7 +36,7 @@ qn=${ATTRIBUTE_COMPARE_QN:-10}
 qt=${ATTRIBUTE_COMPARE_QT:-12}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-for tool in draco_encoder draco_decoder jq; do
+for tool in draco_encoder draco_decoder ctmconv jq; do
   command -v "$tool" >/dev/null || {
     echo "$tool not found (see the head of $0)" >&2
     exit 1
@@ -54,7 +59,7 @@ row() {
     local IFS='|'
     echo "| $* |"
   else
-    printf '%-10s %4s %8s %7s %7s %7s %6s %6s %8s %8s %7s %7s %13s %13s\n' "$@"
+    printf '%-10s %4s %8s %7s %7s %7s %6s %6s %8s %8s %8s %7s %7s %7s %13s %13s\n' "$@"
   fi
 }
 # Section bytes of a container, by role: connectivity, positions, attributes, parts, rest.
@@ -66,9 +71,10 @@ split_sections() {
     | @tsv'
 }
 
-row mesh bits lrmesh conn GEOM ATTR PART rest weld draco ratio weld-rt "lrm v/t" "draco v/t"
-[ $markdown = 1 ] && row --- --: --: --: --: --: --: --: --: --: --: --: --: --:
-declare -A ratios wratios
+row mesh bits lrmesh conn GEOM ATTR PART rest weld draco openctm ratio weld-rt ctm-rt \
+  "lrm v/t" "draco v/t"
+[ $markdown = 1 ] && row --- --: --: --: --: --: --: --: --: --: --: --: --: --: --: --:
+declare -A ratios wratios cratios
 for bits in 11 14 16; do
   for m in "${meshes[@]}"; do
     name=$(basename "$m" .obj)
@@ -83,14 +89,24 @@ for bits in 11 14 16; do
     draco_decoder -i "$work/d.drc" -o "$work/d.obj" >/dev/null
     dv=$(grep -c '^v ' "$work/d.obj" || true)
     df=$(grep -c '^f ' "$work/d.obj" || true)
+    side=$(awk '$1 == "v" { for (i = 2; i <= 4; i++) {
+        if (!(i in lo) || $i < lo[i]) lo[i] = $i; if (!(i in hi) || $i > hi[i]) hi[i] = $i } }
+      END { m = 0; for (i = 2; i <= 4; i++) if (hi[i] - lo[i] > m) m = hi[i] - lo[i]
+        printf "%.9g", m }' "$m")
+    step() { awk -v s="$1" -v n="$2" 'BEGIN { printf "%.9g", s / (2 ^ n - 1) }'; }
+    ctmconv "$m" "$work/c.ctm" --method MG2 --level 9 --vprec "$(step "$side" "$bits")" \
+      --nprec "$(step 2 "$qn")" --tprec "$(step 1 "$qt")" --comment " " >/dev/null
+    ctm=$(stat -c %s "$work/c.ctm")
+    cratio=$(calc "$ctm / $draco")
+    cratios[$bits]+="$cratio "
     ratio=$(calc "$total / $draco")
     wratio=$(calc "$weld / $draco")
     ratios[$bits]+="$ratio "
     wratios[$bits]+="$wratio "
     rest=$((total - conn - geom - attr - part))
     row "$name" "$bits" "$total" "$conn" "$geom" "$attr" "$part" "$rest" "$weld" "$draco" \
-      "$ratio" "$wratio" "$v/$t" "$dv/$df"
+      "$ctm" "$ratio" "$wratio" "$cratio" "$v/$t" "$dv/$df"
   done
-  row median "$bits" "" "" "" "" "" "" "" "" "$(echo "${ratios[$bits]}" | median)" \
-    "$(echo "${wratios[$bits]}" | median)" "" ""
+  row median "$bits" "" "" "" "" "" "" "" "" "" "$(echo "${ratios[$bits]}" | median)" \
+    "$(echo "${wratios[$bits]}" | median)" "$(echo "${cratios[$bits]}" | median)" "" ""
 done
