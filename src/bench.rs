@@ -35,6 +35,16 @@ pub fn median_time<R>(runs: usize, mut f: impl FnMut() -> R) -> Duration {
     times[times.len() / 2]
 }
 
+/// The median time of copying `bytes` into a buffer of their size (allocated once): the
+/// baseline that an open of the same bytes is measured against.
+fn memcpy_time(runs: usize, bytes: &[u8]) -> Duration {
+    let mut copy = vec![0u8; bytes.len()];
+    median_time(runs, || {
+        copy.copy_from_slice(black_box(bytes));
+        black_box(copy.as_ptr());
+    })
+}
+
 /// Sixteen planes across the bounding box of `positions` (slightly tilted from the third
 /// axis), each with a triangle of `mesh` it cuts: the starts of the contour walks. The planes
 /// depend on the positions only, so every representation walks the same contours.
@@ -157,6 +167,9 @@ pub struct BenchRow {
     pub build_ms: Option<f64>,
     /// Time to open (validate) or decode the stored form.
     pub open_ms: Option<f64>,
+    /// Time to copy the bytes that `open_ms` opens (the whole `.lrm` of a view, the stream
+    /// for Edgebreaker), in the same run: open as a ratio to memory speed.
+    pub memcpy_ms: Option<f64>,
     /// The Fig. 10 loops' time per item as ratios to the corner table's; `None` without
     /// random access.
     pub loops: Option<LoopFigures>,
@@ -224,7 +237,7 @@ fn row(
     bytes: u64,
     triangles: usize,
     build: Option<Duration>,
-    open: Option<Duration>,
+    open: Option<(Duration, Duration)>,
     loops: Option<(&LoopTimes, &LoopTimes)>,
 ) -> BenchRow {
     BenchRow {
@@ -232,7 +245,8 @@ fn row(
         bytes,
         bits_per_triangle: 8.0 * bytes as f64 / triangles.max(1) as f64,
         build_ms: build.map(ms),
-        open_ms: open.map(ms),
+        open_ms: open.map(|(open, _)| ms(open)),
+        memcpy_ms: open.map(|(_, copy)| ms(copy)),
         loops: loops.map(|(l, baseline)| LoopFigures::new(l.ratios(baseline))),
     }
 }
@@ -308,7 +322,7 @@ pub fn run(
             view.summary().connectivity_bytes,
             n,
             Some(encode_time),
-            Some(open_time),
+            Some((open_time, memcpy_time(runs, &bytes))),
             Some((&view_loops, &ct_loops)),
         ));
     }
@@ -358,7 +372,7 @@ pub fn run(
             view.summary().connectivity_bytes,
             n,
             Some(encode_time),
-            Some(open_time),
+            Some((open_time, memcpy_time(runs, &bytes))),
             Some((&view_loops, &ct_loops)),
         ));
     }
@@ -373,7 +387,7 @@ pub fn run(
         eb.bytes.len() as u64,
         n,
         Some(eb_build),
-        Some(eb_decode),
+        Some((eb_decode, memcpy_time(runs, &eb.bytes))),
         None,
     ));
 
@@ -409,12 +423,13 @@ impl std::fmt::Display for BenchReport {
         )?;
         writeln!(
             f,
-            "{:<20} {:>11} {:>9} {:>10} {:>10} {:>7} {:>7} {:>8} {:>8} {:>8}",
+            "{:<20} {:>11} {:>9} {:>10} {:>10} {:>9} {:>7} {:>7} {:>8} {:>8} {:>8}",
             "representation",
             "bytes",
             "bits/tri",
             "build ms",
             "open ms",
+            "/memcpy",
             "c.v",
             "c.o",
             "valence",
@@ -429,12 +444,17 @@ impl std::fmt::Display for BenchReport {
             let l = r.loops.map(|l| l.to_array());
             writeln!(
                 f,
-                "{:<20} {:>11} {:>9.2} {} {} {} {} {} {} {}",
+                "{:<20} {:>11} {:>9.2} {} {} {} {} {} {} {} {}",
                 r.name,
                 r.bytes,
                 r.bits_per_triangle,
                 opt(r.build_ms, 10, 2),
                 opt(r.open_ms, 10, 2),
+                opt(
+                    r.open_ms.zip(r.memcpy_ms).map(|(o, c)| o / c.max(1e-9)),
+                    9,
+                    0
+                ),
                 opt(l.map(|l| l[0]), 7, 2),
                 opt(l.map(|l| l[1]), 7, 2),
                 opt(l.map(|l| l[2]), 8, 2),
@@ -456,7 +476,7 @@ impl std::fmt::Display for BenchReport {
             f,
             "build: corner table from the mesh; owned LRs, Edgebreaker, CTS from the corner \
              table; views: the whole .lrm encoded from the mesh. open: validation of the .lrm \
-             (views), decoding (Edgebreaker)"
+             (views), decoding (Edgebreaker); /memcpy: open as a ratio to copying the same bytes"
         )
     }
 }

@@ -325,6 +325,13 @@ fn bench_json_has_one_row_per_representation() {
     let row = |name: &str| rows.iter().find(|r| r["name"] == name).unwrap();
     assert!(row("Edgebreaker")["loops"].is_null());
     assert!(row("LR (view)")["open_ms"].as_f64().is_some());
+    for name in ["LR (view)", "compact LR (view)", "Edgebreaker"] {
+        assert!(
+            row(name)["memcpy_ms"].as_f64().is_some_and(|t| t > 0.0),
+            "{name}"
+        );
+    }
+    assert!(row("LR (owned)")["memcpy_ms"].is_null());
     assert!(row("LR (owned)")["bytes"].as_f64() < row("corner table")["bytes"].as_f64());
     assert!(row("compact LR (owned)")["bytes"].as_f64() < row("LR (owned)")["bytes"].as_f64());
     assert!(row("compact LR (view)")["open_ms"].as_f64().is_some());

@@ -39,8 +39,19 @@ impl Container<'_> {
         let kept_count = self.kept.count() / 3;
         let mut slots: Vec<(u32, [u32; 3])> =
             Vec::with_capacity(self.triangles as usize + kept_count);
-        for t in conn.triangles() {
-            slots.push((t.0, conn.triangle_vertices(t).map(|v| v.0)));
+        match conn {
+            // The decoded table's triangles, straight from its V table.
+            super::Connectivity::Edgebreaker(table) => {
+                let v = table.v_table();
+                slots.extend(
+                    (0..v.len() / 3).map(|t| (t as u32, [v[3 * t], v[3 * t + 1], v[3 * t + 2]])),
+                );
+            }
+            _ => {
+                for t in conn.triangles() {
+                    slots.push((t.0, conn.triangle_vertices(t).map(|v| v.0)));
+                }
+            }
         }
         let bound = conn.triangle_id_bound();
         for j in 0..kept_count {
