@@ -47,12 +47,12 @@ pub trait CornerOps {
     fn triangle_corner(&self, t: Triangle) -> Corner;
 
     /// `c.s = c.n.o.n`: the next corner around `c.v`; `None` at a boundary.
-    #[inline]
+    #[inline(always)]
     fn swing(&self, c: Corner) -> Option<Corner> {
         self.opposite(self.next(c)).map(|d| self.next(d))
     }
     /// `c.p.o.p`: the previous corner around `c.v` (the inverse of swing); `None` at a boundary.
-    #[inline]
+    #[inline(always)]
     fn unswing(&self, c: Corner) -> Option<Corner> {
         self.opposite(self.prev(c)).map(|d| self.prev(d))
     }

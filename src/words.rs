@@ -27,8 +27,10 @@ pub struct LeWords<'a>(pub(crate) &'a [u8]);
 impl Words for LeWords<'_> {
     #[inline(always)]
     fn at(&self, i: usize) -> u32 {
-        let b = &self.0[4 * i..4 * i + 4];
-        u32::from_le_bytes([b[0], b[1], b[2], b[3]])
+        // One bounds check and one (unaligned) load: indexing the four bytes one by one
+        // made the compiler assemble the word from bytes.
+        let b: [u8; 4] = self.0[4 * i..4 * i + 4].try_into().expect("four bytes");
+        u32::from_le_bytes(b)
     }
     fn count(&self) -> usize {
         self.0.len() / 4
@@ -92,7 +94,8 @@ pub struct LeUnits<'a>(pub(crate) &'a [u8]);
 impl Units for LeUnits<'_> {
     #[inline(always)]
     fn at(&self, i: usize) -> u16 {
-        u16::from_le_bytes([self.0[2 * i], self.0[2 * i + 1]])
+        let b: [u8; 2] = self.0[2 * i..2 * i + 2].try_into().expect("two bytes");
+        u16::from_le_bytes(b)
     }
     fn count(&self) -> usize {
         self.0.len() / 2
