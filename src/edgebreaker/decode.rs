@@ -108,8 +108,8 @@ pub(crate) fn decode_glued(bytes: &[u8], limits: &Limits) -> Result<(Decoded, Ve
         &mut cd,
         &mut Unknown,
         &topology,
-        nt as u32,
-        referenced as u32,
+        (nt as u32, referenced as u32),
+        true,
     )?;
     let decoded = Decoded {
         vertex_count: nv as u32,

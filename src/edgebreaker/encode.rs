@@ -4,7 +4,7 @@
 use super::coder::Encoder;
 use super::rebuild::{rebuild, Known};
 use super::topology::code_topology;
-use super::{next, prev, sym, Comp, EdgebreakerStats, Encoded, Topology, MAGIC, VERSION};
+use super::{next, prev, sym, Comp, Decoded, EdgebreakerStats, Encoded, Topology, MAGIC, VERSION};
 use crate::corner_table::NONE;
 use crate::error::{Error, Result};
 use crate::ops::CornerOps;
@@ -295,6 +295,16 @@ fn leb128(out: &mut Vec<u8>, mut x: u64) {
 /// [`Error::Internal`] if the table's invariants do not hold (they always do for a table
 /// built by [`CornerTable::build`]), or if the stream fails to rebuild the table (a bug).
 pub fn encode(table: &CornerTable) -> Result<Encoded> {
+    encode_glued(table, false).map(|(encoded, _)| encoded)
+}
+
+/// [`encode`], and with `glued` what [`super::decode_glued`] gives back for the stream (the
+/// pass that writes it rebuilds the same triangles and glues the same edges), without
+/// decoding it.
+pub(crate) fn encode_glued(
+    table: &CornerTable,
+    glued: bool,
+) -> Result<(Encoded, Option<(Decoded, Vec<u32>)>)> {
     let plan = plan(table)?;
     let nt = plan.symbols.len() as u32;
     let nv = plan.vertex_order.len() as u64;
@@ -311,10 +321,16 @@ pub fn encode(table: &CornerTable) -> Result<Encoded> {
     };
     let super::rebuild::Rebuilt {
         triangles: rebuilt,
+        opposites,
         tally,
-        ..
-    } = rebuild(&mut clers, &mut known, &plan.topology, nt, plan.referenced)
-        .map_err(|e| Error::Internal(format!("Edgebreaker encoder could not rebuild: {e}")))?;
+    } = rebuild(
+        &mut clers,
+        &mut known,
+        &plan.topology,
+        (nt, plan.referenced),
+        glued,
+    )
+    .map_err(|e| Error::Internal(format!("Edgebreaker encoder could not rebuild: {e}")))?;
     let clers = clers.finish();
     // The stream must give back the table: check every corner (linear, and cheap next to
     // the traversal).
@@ -365,10 +381,18 @@ pub fn encode(table: &CornerTable) -> Result<Encoded> {
         components: plan.topology.comps.len() as u64,
         boundary_components: plan.topology.comps.iter().filter(|c| !c.closed).count() as u64,
     };
-    Ok(Encoded {
+    let glued = glued.then(|| {
+        let decoded = Decoded {
+            vertex_count: nv as u32,
+            triangles: rebuilt,
+        };
+        (decoded, opposites)
+    });
+    let encoded = Encoded {
         bytes,
         vertex_order: plan.vertex_order,
         triangle_order: plan.triangle_order,
         stats,
-    })
+    };
+    Ok((encoded, glued))
 }

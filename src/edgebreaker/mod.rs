@@ -67,6 +67,7 @@ use crate::CornerTable;
 pub use decode::decode;
 pub(crate) use decode::decode_glued;
 pub use encode::encode;
+pub(crate) use encode::encode_glued;
 
 /// Edgebreaker symbols as stored internally (not an on-disk code: symbols are range coded).
 pub(crate) mod sym {

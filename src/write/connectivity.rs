@@ -177,19 +177,16 @@ pub(super) fn edgebreaker_section(
     shape: bool,
     predicted: bool,
 ) -> Result<Encoded> {
-    let encoded = edgebreaker::encode(table)?;
-    let decoder_table = if shape || predicted {
-        let unbounded = edgebreaker::Limits {
-            max_triangles: u64::MAX,
-            max_vertices: u64::MAX,
-        };
-        let decoded = edgebreaker::decode(&encoded.bytes, &unbounded)?;
-        Some(CornerTable::build(
-            decoded.vertex_count as usize,
-            &decoded.triangles,
-        )?)
-    } else {
-        None
+    // The table a reader decodes, from the pass that wrote the stream (the same triangles
+    // and glued edges as decoding it).
+    let (encoded, glued) = edgebreaker::encode_glued(table, shape || predicted)?;
+    let decoder_table = match glued {
+        Some((decoded, opposites)) => Some(CornerTable::from_glued(
+            decoded.vertex_count,
+            decoded.triangles,
+            opposites,
+        )?),
+        None => None,
     };
     let shape = if let (true, Some(decoded)) = (shape, &decoder_table) {
         Shape::of(decoded)

@@ -64,23 +64,24 @@ pub(crate) struct Tally {
 pub(crate) struct Rebuilt {
     pub triangles: Vec<[u32; 3]>,
     /// `c.o` of every corner `c` of the triangles, [`crate::ids::NONE`] at an edge left
-    /// free.
+    /// free (empty unless asked for).
     pub opposites: Vec<u32>,
     pub tally: Tally,
 }
 
-/// Runs the reverse pass over `nt` triangles and `referenced` vertices with topology `topo`.
+/// Runs the reverse pass over `nt` triangles and `referenced` vertices with topology `topo`;
+/// the opposites only if `opposites` (else left empty).
 pub(crate) fn rebuild<B: Bits, K: Known>(
     b: &mut B,
     k: &mut K,
     topo: &Topology,
-    nt: u32,
-    referenced: u32,
+    (nt, referenced): (u32, u32),
+    opposites: bool,
 ) -> Result<Rebuilt> {
     if u32::fits(3 * nt as u64) && !force_wide() {
-        run::<B, K, u32>(b, k, topo, nt, referenced)
+        run::<B, K, u32>(b, k, topo, (nt, referenced), opposites)
     } else {
-        run::<B, K, [u32; 2]>(b, k, topo, nt, referenced)
+        run::<B, K, [u32; 2]>(b, k, topo, (nt, referenced), opposites)
     }
 }
 
@@ -166,6 +167,9 @@ mod glued_tests {
         let built = CornerTable::build(nv as usize, &decoded.triangles).unwrap();
         let glued = CornerTable::from_glued(nv, decoded.triangles.clone(), o.clone()).unwrap();
         assert_eq!(glued, built);
+        // The encoder's pass hands over what decoding its stream gives.
+        let (_, from_encoder) = crate::edgebreaker::encode_glued(&table, true).unwrap();
+        assert_eq!(from_encoder, Some((decoded.clone(), o.clone())));
         // An edge left unglued, every edge unglued, a pair glued across the wrong corners.
         let c = o.iter().position(|&d| d != NONE).unwrap();
         let mut one = o.clone();

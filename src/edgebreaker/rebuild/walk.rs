@@ -200,8 +200,8 @@ pub(super) fn run<B: Bits, K: Known, W: ChainWord>(
     b: &mut B,
     k: &mut K,
     topo: &Topology,
-    nt: u32,
-    referenced: u32,
+    (nt, referenced): (u32, u32),
+    want_opposites: bool,
 ) -> Result<Rebuilt> {
     let mut st = State::<W> {
         slots: vec![
@@ -304,7 +304,11 @@ pub(super) fn run<B: Bits, K: Known, W: ChainWord>(
         return Err(malformed(b.offset(), "corner without a vertex"));
     }
     // `c.o` is `d1[c.p].p` (see `State`).
-    let opposites = (0..st.slots.len() as u32).map(|c| st.opposite(c)).collect();
+    let opposites = if want_opposites {
+        (0..st.slots.len() as u32).map(|c| st.opposite(c)).collect()
+    } else {
+        Vec::new()
+    };
     Ok(Rebuilt {
         triangles: st.v,
         opposites,
