@@ -298,13 +298,13 @@ pub fn encode(table: &CornerTable) -> Result<Encoded> {
     encode_glued(table, false).map(|(encoded, _)| encoded)
 }
 
+/// The decoded stream and the opposite of every corner, as [`super::decode_glued`] gives them.
+pub(crate) type Glued = (Decoded, Vec<u32>);
+
 /// [`encode`], and with `glued` what [`super::decode_glued`] gives back for the stream (the
 /// pass that writes it rebuilds the same triangles and glues the same edges), without
 /// decoding it.
-pub(crate) fn encode_glued(
-    table: &CornerTable,
-    glued: bool,
-) -> Result<(Encoded, Option<(Decoded, Vec<u32>)>)> {
+pub(crate) fn encode_glued(table: &CornerTable, glued: bool) -> Result<(Encoded, Option<Glued>)> {
     let plan = plan(table)?;
     let nt = plan.symbols.len() as u32;
     let nv = plan.vertex_order.len() as u64;
