@@ -341,21 +341,10 @@ fn glued_c_table(nv: u32, v: &[u32], o: &[u32]) -> Option<Vec<u32>> {
         if c_table[a as usize] != NONE {
             continue;
         }
-        let (mut first, mut closed) = (c, false);
-        loop {
-            match unswing(first) {
-                NONE => break,
-                back if back == c => {
-                    (first, closed) = (c, true);
-                    break;
-                }
-                back => first = back,
-            }
-        }
-        c_table[a as usize] = first;
+        // Each corner once: swing from `c` around the fan; if it opens, unswing from `c` to
+        // its start.
         let (mut fan, mut neighbours) = (0usize, 0usize);
-        let mut d = first;
-        loop {
+        let mut visit = |d: u32| {
             fan += 1;
             for b in [v[next(d) as usize], v[prev(d) as usize]] {
                 if stamp[b as usize] != a {
@@ -363,11 +352,25 @@ fn glued_c_table(nv: u32, v: &[u32], o: &[u32]) -> Option<Vec<u32>> {
                     neighbours += 1;
                 }
             }
+        };
+        let mut d = c;
+        let closed = loop {
+            visit(d);
             d = swing(d);
-            if d == NONE || d == first {
-                break;
+            if d == NONE || d == c {
+                break d == c;
+            }
+        };
+        let mut first = c;
+        if !closed {
+            let mut d = unswing(c);
+            while d != NONE {
+                visit(d);
+                first = d;
+                d = unswing(d);
             }
         }
+        c_table[a as usize] = first;
         // A fan of k corners has k edges if closed, k + 1 if open: one neighbour each.
         if neighbours != fan + usize::from(!closed) {
             return None;
