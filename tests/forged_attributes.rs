@@ -128,12 +128,20 @@ fn v40_attribute_records() {
         o(r0 + 5),
         "per-corner",
     );
-    // The first reserved word's low bytes are the value and seam encodings ([V46], [V49]).
+    // The first reserved word's low bytes are the value and seam encodings ([V46], [V49])
+    // and the normal predictor, 0 without predicted values ([V47]).
     for k in 0..3 {
-        let at = r0 + 20 + 4 * k + 2 * usize::from(k == 0);
+        let at = r0 + 20 + 4 * k + 3 * usize::from(k == 0);
         let bad = byte(&bytes, at, 1);
         breaks(&bad, 40, "ATTR", o(at), "reserved");
     }
+    breaks(
+        &byte(&bytes, r0 + 22, 1),
+        40,
+        "ATTR",
+        o(r0 + 22),
+        "normal predictor without predicted values",
+    );
     // A name on a standard semantic, none on a custom one, a name that is not UTF-8.
     let bad = forge(&bytes, Tag::ATTR, |p| {
         p[r0 + 6] = 1;

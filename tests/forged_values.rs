@@ -199,6 +199,113 @@ fn v47_extra_values_bounded_by_the_flagged_corners() {
     assert!(m.contains("more than the"), "{m}");
 }
 
+/// [V47] The normal predictor (byte 22): 0, or 1 for normals; [V40] 0 without predicted
+/// values.
+#[test]
+fn v47_normal_predictor() {
+    let mesh = torus();
+    let eb = encoded_with(&mesh, Connectivity::Edgebreaker);
+    let at = section_at(&eb, Tag::ATTR);
+    let recs = records(&eb);
+    let ((uv_at, _), (normal_at, normal)) = (recs[0], recs[1]);
+    assert_eq!(
+        normal.normal_predictor(),
+        0,
+        "this torus's normals follow its surface"
+    );
+    let bad = forge(&eb, Tag::ATTR, |p| p[normal_at + 22] = 2);
+    breaks(
+        &bad,
+        47,
+        "ATTR",
+        at + normal_at as u64 + 22,
+        "normal predictor 2",
+    );
+    let bad = forge(&eb, Tag::ATTR, |p| p[uv_at + 22] = 1);
+    breaks(
+        &bad,
+        47,
+        "ATTR",
+        at + uv_at as u64 + 22,
+        "normal predictor 1",
+    );
+    let lr = encoded_with(&mesh, Connectivity::Lr);
+    let (lr_normal_at, _) = records(&lr)[1];
+    let bad = forge(&lr, Tag::ATTR, |p| p[lr_normal_at + 22] = 1);
+    breaks(
+        &bad,
+        40,
+        "ATTR",
+        section_at(&lr, Tag::ATTR) + lr_normal_at as u64 + 22,
+        "without predicted values",
+    );
+    // The byte is read: the stream of predictor 0 read with predictor 1 is refused or
+    // gives other normals.
+    let flipped = forge(&eb, Tag::ATTR, |p| p[normal_at + 22] = 1);
+    if v47_message(&flipped).is_none() {
+        let normals = |b: &[u8]| open(b, &Limits::default()).unwrap().to_mesh().attributes;
+        assert_ne!(normals(&flipped)[1], normals(&eb)[1]);
+    }
+}
+
+/// Normals on a coarse grid are predicted from their neighbours alone (normal predictor 1,
+/// container 1.3) and decode to the normals of the packed record of level 0.
+#[test]
+fn coarse_normals_are_predicted_from_their_neighbours() {
+    let mesh = torus();
+    let mut coarse = options(Connectivity::Edgebreaker);
+    // On a grid of 4 levels per axis the torus's triangles no longer face where its
+    // normals point.
+    coarse.position_bits = Some(2);
+    let bytes = encode(&mesh, &coarse).unwrap();
+    let (_, normals) = records(&bytes)[1];
+    assert_eq!(
+        (normals.value_encoding(), normals.normal_predictor()),
+        (2, 1)
+    );
+    assert_eq!(bytes[10], 3, "minor version 3");
+    let mut packed = coarse.clone();
+    packed.level = 0;
+    let a = open(&encode(&mesh, &packed).unwrap(), &Limits::default())
+        .unwrap()
+        .to_mesh();
+    let b = open(&bytes, &Limits::default()).unwrap().to_mesh();
+    for (t, &tri) in a.triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (x, y) = (&a.attributes[1], &b.attributes[1]);
+            assert_eq!(x.corner_bytes(t, k, tri), y.corner_bytes(t, k, tri));
+        }
+    }
+}
+
+/// `format::attributes::record_len` walks records of every value and seam encoding: the
+/// records of these containers tile their `ATTR` payloads.
+#[test]
+fn record_lengths_tile_the_payload() {
+    let mesh = torus();
+    for connectivity in [Connectivity::Edgebreaker, Connectivity::Lr] {
+        for level in [0, 6] {
+            let mut o = options(connectivity);
+            o.level = level;
+            let bytes = encode(&mesh, &o).unwrap();
+            let file = open(&bytes, &Limits::default()).unwrap();
+            let p = payload(&bytes, Tag::ATTR);
+            let mut at = 4;
+            for a in file.attributes() {
+                let len = lrmesh::format::attributes::record_len(
+                    &p,
+                    at,
+                    file.connectivity_vertex_count(),
+                )
+                .expect("a record length");
+                assert_eq!(len as u64, a.stored_bytes());
+                at += len;
+            }
+            assert_eq!(at, p.len());
+        }
+    }
+}
+
 /// What the tests above forge from decodes to the packed values of level 0.
 #[test]
 fn the_files_forged_from_decode_right() {

@@ -19,7 +19,7 @@ use lrmesh::write::{encode, Connectivity, EncodeOptions};
 use lrmesh::CornerOps;
 
 /// Sources, read as OFF unless named in [`OBJ_VECTORS`].
-const VECTORS: [&str; 7] = [
+const VECTORS: [&str; 8] = [
     "closed_tetrahedron",
     "boundary_hedra_open",
     "two_components",
@@ -33,15 +33,18 @@ const VECTORS: [&str; 7] = [
     // Per-corner texture coordinates and normals with seams, and parts (FORMAT.md §3.9,
     // §3.10): each container also has an attribute listing.
     "seamed_cube",
+    // A flat grid with bent normals: on the 12-bit grid they are predicted from their
+    // neighbours (ATTR normal predictor 1, GEOMETRY.md §7.3).
+    "bent_normals",
 ];
 
 /// The sources written as OBJ (per-corner attributes, parts).
-const OBJ_VECTORS: [&str; 1] = ["seamed_cube"];
+const OBJ_VECTORS: [&str; 2] = ["seamed_cube", "bent_normals"];
 
 /// Sources also written with quantized positions (`NAME.q12*.lrm`: a 12-bit grid, GEOM
 /// encodings 2 and 4) and attributes (normals on 10 bits, texture coordinates on 12: ATTR
 /// value encoding 1), each container with a listing of its decoded positions and values.
-const QUANTIZED_VECTORS: [&str; 2] = ["torus_with_t0", "seamed_cube"];
+const QUANTIZED_VECTORS: [&str; 3] = ["torus_with_t0", "seamed_cube", "bent_normals"];
 
 /// The grid of the quantized vectors' positions and texture coordinates.
 const QUANTIZED_BITS: u8 = 12;

@@ -21,6 +21,13 @@ pub const TABLE_SEAMS: u8 = 0;
 /// Seam encoding 1 (Edgebreaker only): the value of every corner range coded (GEOMETRY.md §8).
 pub const CODED_SEAMS: u8 = 1;
 
+/// Normal predictor 0 (byte 22 of a record of predicted octahedral normals): from the
+/// surface, then the neighbours (GEOMETRY.md §7.3).
+pub const SURFACE_NORMALS: u8 = 0;
+/// Normal predictor 1 (version 1.3): from the neighbours only, for surfaces whose coded
+/// positions predict their normals badly (small triangles on a coarse grid).
+pub const NEIGHBOUR_NORMALS: u8 = 1;
+
 /// A record's header, as stored.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct AttributeHeader {
@@ -147,6 +154,12 @@ impl AttributeHeader {
     /// word, [`TABLE_SEAMS`] or [`CODED_SEAMS`].
     pub fn seam_encoding(&self) -> u8 {
         (self.reserved[0] >> 8) as u8
+    }
+
+    /// The normal predictor (FORMAT.md §3.9): byte 22, the third byte of the first reserved
+    /// word, [`SURFACE_NORMALS`] or [`NEIGHBOUR_NORMALS`].
+    pub fn normal_predictor(&self) -> u8 {
+        (self.reserved[0] >> 16) as u8
     }
 
     /// Bytes of the values part of a record of raw values (value encoding 0) for
@@ -314,28 +327,78 @@ pub fn bits_for(max: u32) -> u32 {
     32 - max.leading_zeros()
 }
 
-/// Whether an `ATTR` payload of a container of `vertices` vertices has a record of version
-/// 1.2: value encoding 1 or 2 (quantized, predicted) or seam encoding 1 (coded), walking the
-/// records as far as they are well formed.
-pub fn any_of_version_1_2(payload: &[u8], vertices: u32) -> bool {
+/// The minor version an `ATTR` payload of a container of `vertices` vertices needs: 3 with a
+/// record whose normals are predicted from their neighbours only; 2 with value encoding 1
+/// or 2 (quantized, predicted) or seam encoding 1 (coded); else 1. Walks the records as far
+/// as they are well formed.
+pub fn minor_version(payload: &[u8], vertices: u32) -> u16 {
     let count = if payload.len() >= 4 {
         le_u32(payload, 0)
     } else {
         0
     };
     let mut at = 4usize;
+    let mut minor = 1;
     for _ in 0..count {
         if payload.len() - at < RECORD_HEADER_LEN {
-            return false;
+            break;
         }
         let h = AttributeHeader::parse(&payload[at..]);
-        if h.value_encoding() != super::quantized::RAW || h.seam_encoding() != TABLE_SEAMS {
-            return true;
+        if h.normal_predictor() != SURFACE_NORMALS {
+            return 3;
         }
-        match h.layout(vertices) {
-            Some(l) if l.len() <= payload.len() - at => at += l.len(),
-            _ => return false,
+        if h.value_encoding() != super::quantized::RAW || h.seam_encoding() != TABLE_SEAMS {
+            minor = 2;
+        }
+        match record_len(payload, at, vertices) {
+            Some(len) => at += len,
+            None => break,
         }
     }
-    false
+    minor
+}
+
+/// Bytes of the record at `at` of an `ATTR` payload in a container of `vertices` vertices,
+/// whatever its value and seam encodings, read from its header and length fields (FORMAT.md
+/// §3.9); `None` when they do not fit the payload or the encoding is unknown.
+pub fn record_len(payload: &[u8], at: usize, vertices: u32) -> Option<usize> {
+    use super::quantized::{PREDICTED, QUANTIZED, RAW};
+    let rest = payload.get(at..)?;
+    if rest.len() < RECORD_HEADER_LEN {
+        return None;
+    }
+    let h = AttributeHeader::parse(rest);
+    let start = RECORD_HEADER_LEN + usize::from(h.name_len);
+    let u32_at = |i: usize| (i + 4 <= rest.len()).then(|| le_u32(rest, i));
+    // A quantizer's header: `b`, then for a grid (any semantic but normals) `lo` and `size`.
+    let quantizer = if h.semantic == 1 {
+        1
+    } else {
+        1 + 4 * usize::from(h.components) + 4
+    };
+    let values = match h.value_encoding() {
+        RAW => h.raw_values_len(vertices)?,
+        QUANTIZED => {
+            let bits = u64::from(*rest.get(start)?);
+            let fields = if h.semantic == 1 {
+                2
+            } else {
+                u64::from(h.components)
+            };
+            let count = u64::from(vertices) + u64::from(h.extra);
+            quantizer as u64 + 4 * (count * fields * bits).div_ceil(32)
+        }
+        PREDICTED => quantizer as u64 + 4 + u64::from(u32_at(start + quantizer)?),
+        _ => return None,
+    };
+    let coded = match h.seam_encoding() {
+        TABLE_SEAMS => None,
+        CODED_SEAMS => {
+            let end = usize::try_from(start as u64 + values).ok()?;
+            Some(4 + u64::from(u32_at(end)?))
+        }
+        _ => return None,
+    };
+    let len = h.layout_with_parts(values, coded)?.len();
+    (len <= rest.len()).then_some(len)
 }

@@ -26,7 +26,7 @@ pub const MAJOR: u16 = 1;
 pub const MINOR: u16 = 3;
 
 /// The minor version a file of these sections (tags and payloads) is written with: 3 with
-/// `PART` labels coded; 2 with a
+/// `PART` labels coded or normals predicted from their neighbours only; 2 with a
 /// position encoding of version 1.2 (`GEOM` encodings 2 to 5), an `ATTR` record of value
 /// encoding 1 or 2 or of seam encoding 1, `PART` runs or `KEPC`; 1 with a section of version 1.1 (`ATTR`, `PART`), 0 otherwise,
 /// so that a file says the oldest version that reads it.
@@ -40,11 +40,11 @@ pub fn minor_for<'a>(sections: impl IntoIterator<Item = (Tag, &'a [u8])>) -> u16
         .iter()
         .map(|&(tag, bytes)| match tag {
             Tag::GEOM if bytes.len() >= 4 && le_u32(bytes, 0) >= 2 => 2,
-            Tag::ATTR if vertices.is_some_and(|v| attributes::any_of_version_1_2(bytes, v)) => 2,
+            Tag::ATTR => vertices.map_or(1, |v| attributes::minor_version(bytes, v)),
             Tag::PART if bytes.len() >= 11 && bytes[10] == labels::CODED => 3,
             Tag::PART if bytes.len() >= 10 && bytes[9] == parts::RUNS => 2,
             Tag::KEPC => 2,
-            Tag::ATTR | Tag::PART => 1,
+            Tag::PART => 1,
             _ => 0,
         })
         .max()

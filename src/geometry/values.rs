@@ -129,13 +129,14 @@ fn surface_normals(uses: &Uses) -> Vec<[f64; 3]> {
 fn code<B: Bits>(
     b: &mut B,
     uses: &Uses,
-    q: &Quantizer,
+    (q, surface): (&Quantizer, bool),
     levels: &mut [u32],
 ) -> Result<(), (u64, String)> {
     let n = q.fields() as usize;
     let max = q.max_level();
     let mut models = Residuals::with_axes(u32::from(q.bits()), n);
-    let normals = matches!(q, Quantizer::Octahedral { .. }).then(|| surface_normals(uses));
+    let octahedral = matches!(q, Quantizer::Octahedral { .. });
+    let normals = (octahedral && surface).then(|| surface_normals(uses));
     let mut known = vec![false; uses.count as usize];
     let mut previous = [0u32; 4];
     for (x, corner) in order(uses) {
@@ -242,11 +243,12 @@ fn across(uses: &Uses, t: usize, k: usize) -> Option<u32> {
     Some(uses.values[u][j])
 }
 
-/// The stream of `levels` (`c'` integers per value, `V + E` values).
-pub(crate) fn encode(uses: &Uses, q: &Quantizer, levels: &[u32]) -> Vec<u8> {
+/// The stream of `levels` (`c'` integers per value, `V + E` values); octahedral normals
+/// predicted from the surface first when `surface` (GEOMETRY.md §7.3, rule 2).
+pub(crate) fn encode(uses: &Uses, q: &Quantizer, surface: bool, levels: &[u32]) -> Vec<u8> {
     let mut e = Encoder::new();
     let mut copy = levels.to_vec();
-    code(&mut e, uses, q, &mut copy).expect("the encoder's own integers are in range");
+    code(&mut e, uses, (q, surface), &mut copy).expect("the encoder's own integers are in range");
     e.finish()
 }
 
@@ -254,12 +256,12 @@ pub(crate) fn encode(uses: &Uses, q: &Quantizer, levels: &[u32]) -> Vec<u8> {
 /// `c'` per value; `Err((offset, message))` when the stream breaks [V47].
 pub(crate) fn decode(
     uses: &Uses,
-    q: &Quantizer,
+    (q, surface): (&Quantizer, bool),
     stream: &[u8],
     base: usize,
 ) -> Result<Vec<u32>, (u64, String)> {
     let mut levels = vec![0u32; uses.count as usize * q.fields() as usize];
     let mut d = Decoder::new(stream, base);
-    code(&mut d, uses, q, &mut levels)?;
+    code(&mut d, uses, (q, surface), &mut levels)?;
     Ok(levels)
 }

@@ -38,6 +38,8 @@ pub struct AttributeView<'a> {
     seams: Option<Seams<Packed<'a>>>,
     /// The seam encoding (FORMAT.md §3.9): 0 tables, 1 coded.
     seam_encoding: u8,
+    /// The normal predictor (FORMAT.md §3.9, byte 22): 0 surface, 1 neighbours.
+    normal_predictor: u8,
     /// Bytes the attribute takes in the file: its record, or its 1.0 section.
     stored_bytes: u64,
 }
@@ -83,6 +85,12 @@ impl<'a> AttributeView<'a> {
     /// (decoded when the container was opened).
     pub fn seam_encoding(&self) -> u8 {
         self.seam_encoding
+    }
+
+    /// The normal predictor of a record of predicted values (FORMAT.md §3.9, byte 22): 0
+    /// from the surface, 1 from the neighbours only; 0 for any other record.
+    pub fn normal_predictor(&self) -> u8 {
+        self.normal_predictor
     }
 
     /// How the values are quantized, for a record of value encoding 1 or 2.

@@ -203,10 +203,10 @@ impl Container<'_> {
                         Some(q) => format!(" quantized {}-bit", q.bits()),
                         None => String::new(),
                     },
-                    if a.value_encoding() == crate::format::quantized::PREDICTED {
-                        " predicted"
-                    } else {
-                        ""
+                    match (a.value_encoding(), a.normal_predictor()) {
+                        (crate::format::quantized::PREDICTED, 0) => " predicted",
+                        (crate::format::quantized::PREDICTED, _) => " predicted-from-neighbours",
+                        _ => "",
                     },
                     if a.seam_encoding() == crate::format::attributes::CODED_SEAMS {
                         " coded-seams"

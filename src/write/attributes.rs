@@ -8,7 +8,8 @@ use super::connectivity::Encoded;
 use crate::corner_table::CornerTable;
 use crate::error::{Error, Result};
 use crate::format::attributes::{
-    bits_for, pack, tables_of, AttributeHeader, CODED_SEAMS, NORMALIZED, PER_CORNER,
+    bits_for, pack, tables_of, AttributeHeader, CODED_SEAMS, NEIGHBOUR_NORMALS, NORMALIZED,
+    PER_CORNER, SURFACE_NORMALS,
 };
 use crate::format::labels;
 use crate::format::parts::{encode_runs, PartsHeader, RUNS};
@@ -151,8 +152,9 @@ fn key(a: &Attribute, q: Option<&Quantizer>, i: usize, out: &mut Vec<u8>) {
 
 /// The values part of a quantized record from the keys of its values (u32 integers, `c'`
 /// per value): the header, then the integers packed in `b` bits (value encoding 1); or,
-/// with `uses`, predicted (encoding 2) when that is shorter. Returns the encoding too.
-fn quantized_values(q: &Quantizer, keys: &[u8], uses: Option<&Uses>) -> (u8, Vec<u8>) {
+/// with `uses`, predicted (encoding 2) when that is shorter, normals with the shorter of
+/// their two predictors. Returns the encoding and the normal predictor too.
+fn quantized_values(q: &Quantizer, keys: &[u8], uses: Option<&Uses>) -> (u8, u8, Vec<u8>) {
     let levels: Vec<u32> = keys
         .chunks_exact(4)
         .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
@@ -163,18 +165,25 @@ fn quantized_values(q: &Quantizer, keys: &[u8], uses: Option<&Uses>) -> (u8, Vec
         packed.extend_from_slice(&w.to_le_bytes());
     }
     let Some(uses) = uses else {
-        return (QUANTIZED, packed);
+        return (QUANTIZED, SURFACE_NORMALS, packed);
     };
-    let stream = values::encode(uses, q, &levels);
-    let mut predicted = Vec::new();
-    q.write_header(&mut predicted);
-    predicted.extend_from_slice(&(stream.len() as u32).to_le_bytes());
-    predicted.extend_from_slice(&stream);
-    if predicted.len() < packed.len() {
-        (PREDICTED, predicted)
+    let predictors: &[u8] = if matches!(q, Quantizer::Octahedral { .. }) {
+        &[SURFACE_NORMALS, NEIGHBOUR_NORMALS]
     } else {
-        (QUANTIZED, packed)
+        &[SURFACE_NORMALS]
+    };
+    let mut best = (QUANTIZED, SURFACE_NORMALS, packed);
+    for &predictor in predictors {
+        let stream = values::encode(uses, q, predictor == SURFACE_NORMALS, &levels);
+        let mut predicted = Vec::new();
+        q.write_header(&mut predicted);
+        predicted.extend_from_slice(&(stream.len() as u32).to_le_bytes());
+        predicted.extend_from_slice(&stream);
+        if predicted.len() < best.2.len() {
+            best = (PREDICTED, predictor, predicted);
+        }
     }
+    best
 }
 
 /// What predicted values need: the positions as decoded, the vertices and the opposite
@@ -234,8 +243,8 @@ fn record(
                 count: (keys.len() / (4 * q.fields() as usize)) as u32,
             }
         });
-        let (encoding, bytes) = quantized_values(q, keys, uses.as_ref());
-        header.reserved[0] = u32::from(encoding);
+        let (encoding, predictor, bytes) = quantized_values(q, keys, uses.as_ref());
+        header.reserved[0] = u32::from(encoding) | u32::from(predictor) << 16;
         bytes
     };
     let mut values = Vec::new();

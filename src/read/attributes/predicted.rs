@@ -5,7 +5,9 @@
 use super::rules::Context;
 use super::Packed;
 use crate::error::{Result, Rule};
-use crate::format::attributes::{pack, AttributeHeader, Seams};
+use crate::format::attributes::{
+    pack, AttributeHeader, Seams, NEIGHBOUR_NORMALS, RECORD_HEADER_LEN, SURFACE_NORMALS,
+};
 use crate::format::quantized::Quantizer;
 use crate::geometry::values::{self, Uses};
 use crate::read::fields::Fields;
@@ -44,6 +46,17 @@ pub(super) fn decode(
 ) -> Result<Vec<u32>> {
     let err = |at: usize, message: String| f.err(at, RULE, format!("attribute {i}: {message}"));
     let values_at = values.start;
+    let surface = match (h.normal_predictor(), q) {
+        (SURFACE_NORMALS, _) => true,
+        (NEIGHBOUR_NORMALS, Quantizer::Octahedral { .. }) => false,
+        (other, _) => {
+            let record = values_at - RECORD_HEADER_LEN - usize::from(h.name_len);
+            return Err(err(
+                record + 22,
+                format!("normal predictor {other} for these values"),
+            ));
+        }
+    };
     let Some((vertices, opposites)) = super::coded::slots(cx) else {
         return Err(err(
             values_at,
@@ -83,8 +96,9 @@ pub(super) fn decode(
     };
     let start = values_at + q.header_len() + 4;
     let stream = &f.bytes()[start..values.end];
-    let levels = values::decode(&uses, q, stream, f.section.offset as usize + start).map_err(
-        |(offset, message)| {
+    let base = f.section.offset as usize + start;
+    let levels =
+        values::decode(&uses, (q, surface), stream, base).map_err(|(offset, message)| {
             f.err(
                 (offset as usize)
                     .saturating_sub(f.section.offset as usize)
@@ -92,7 +106,6 @@ pub(super) fn decode(
                 RULE,
                 format!("attribute {i}: {message}"),
             )
-        },
-    )?;
+        })?;
     Ok(pack(&levels, u32::from(q.bits())))
 }

@@ -76,6 +76,7 @@ pub(in crate::read) fn attributes<'a>(
             flagged: 0,
             seams: None,
             seam_encoding: TABLE_SEAMS,
+            normal_predictor: 0,
             stored_bytes: values.len() as u64,
         };
     let mut out = Vec::new();
@@ -173,12 +174,16 @@ fn record<'a>(
     if normalized && !component_type.is_integer() {
         return Err(err(4, "normalized floats".into()));
     }
-    let reserved = [h.reserved[0] & !0xffff, h.reserved[1], h.reserved[2]];
+    let reserved = [h.reserved[0] & !0xff_ffff, h.reserved[1], h.reserved[2]];
     if let Some(k) = reserved.iter().position(|&r| r != 0) {
         return Err(err(
-            20 + 4 * k + 2 * usize::from(k == 0),
+            20 + 4 * k + 3 * usize::from(k == 0),
             "reserved field is not zero".into(),
         ));
+    }
+    // Byte 22 says how predicted values are predicted ([V47] checks it); it is 0 otherwise.
+    if h.normal_predictor() != 0 && h.value_encoding() != PREDICTED {
+        return Err(err(22, "normal predictor without predicted values".into()));
     }
     let coded_seams = match h.seam_encoding() {
         TABLE_SEAMS => false,
@@ -343,6 +348,7 @@ fn record<'a>(
         flagged: h.flagged,
         seams,
         seam_encoding: h.seam_encoding(),
+        normal_predictor: h.normal_predictor(),
         stored_bytes: layout.len() as u64,
     };
     Ok((view, at + layout.values.start, at + layout.len()))
