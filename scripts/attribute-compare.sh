@@ -7,7 +7,7 @@
 # 12 bits (QN, QT: ATTRIBUTE_COMPARE_QN, ATTRIBUTE_COMPARE_QT):
 # - lrmesh: `lrmesh encode IN --connectivity edgebreaker --quantize-position N
 #   --quantize-normal QN --quantize-texcoord QT` (default level), whole-file bytes, split by
-#   `lrmesh info --json` into connectivity (EBRK, COPY, KEPT or KEPC), positions (GEOM),
+#   `lrmesh info --json` into connectivity (EBRK, COPY or COPC, KEPT or KEPC), positions (GEOM),
 #   attributes (ATTR), parts (PART) and the rest (header, section table, META, MESH); and the
 #   same with `--weld` (vertices at equal positions merged, attributes per corner where they
 #   differ: what Draco does to every input);
@@ -66,7 +66,7 @@ row() {
 split_sections() {
   "$lrmesh" info "$1" --json | jq -r '
     (.sections | map({(.tag): .length}) | add) as $s
-    | [(($s.EBRK // 0) + ($s.COPY // 0) + ($s.KEPT // 0) + ($s.KEPC // 0)),
+    | [(($s.EBRK // 0) + ($s.COPY // 0) + ($s.COPC // 0) + ($s.KEPT // 0) + ($s.KEPC // 0)),
        ($s.GEOM // 0), ($s.ATTR // 0), ($s.PART // 0), .bytes, .vertices, .triangles]
     | @tsv'
 }

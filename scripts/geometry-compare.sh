@@ -7,7 +7,7 @@
 #
 # Sizes, at 11, 14 and 16 bits per coordinate and lossless ("f32"):
 # - lrmesh: `lrmesh encode --connectivity edgebreaker [--quantize-position N]` (default
-#   level), split by `lrmesh info --json` into connectivity (EBRK, with COPY and KEPT when the
+#   level), split by `lrmesh info --json` into connectivity (EBRK, with COPY/COPC and KEPT/KEPC when the
 #   mesh needs them), positions (GEOM) and the rest (header, section table, META, MESH);
 # - Draco: `draco_encoder -cl 10 -qp N` (-qp 0: no quantization) on the mesh as
 #   `lrmesh convert` writes it to PLY, split into the bytes up to the end of the connectivity
@@ -140,7 +140,7 @@ for m in "${meshes[@]}"; do
       "$lrmesh" info "$f" --json >"$work/info.json" 2>>"$work/err"; then
       lt[$k]=$(stat -c %s "$f")
       lg[$k]=$(section "$work/info.json" GEOM)
-      lc[$k]=$(section "$work/info.json" "EBRK COPY KEPT PERM")
+      lc[$k]=$(section "$work/info.json" "EBRK COPY COPC KEPT KEPC PERM")
     else
       lt[$k]=- lg[$k]=- lc[$k]=-
       say "  lrmesh at $(qname "$q") failed: $(head -c 200 "$work/err" | tr '\n' ' ')"

@@ -7,6 +7,7 @@
 //! [`crate::read`].
 
 pub mod attributes;
+pub mod copied;
 pub mod kept;
 pub mod labels;
 pub mod layout;
@@ -26,7 +27,7 @@ pub const MAJOR: u16 = 1;
 pub const MINOR: u16 = 3;
 
 /// The minor version a file of these sections (tags and payloads) is written with: 3 with
-/// `PART` labels coded or normals predicted from their neighbours only; 2 with a
+/// `PART` labels coded, normals predicted from their neighbours only or `COPC`; 2 with a
 /// position encoding of version 1.2 (`GEOM` encodings 2 to 5), an `ATTR` record of value
 /// encoding 1 or 2 or of seam encoding 1, `PART` runs or `KEPC`; 1 with a section of version 1.1 (`ATTR`, `PART`), 0 otherwise,
 /// so that a file says the oldest version that reads it.
@@ -43,6 +44,7 @@ pub fn minor_for<'a>(sections: impl IntoIterator<Item = (Tag, &'a [u8])>) -> u16
             Tag::ATTR => vertices.map_or(1, |v| attributes::minor_version(bytes, v)),
             Tag::PART if bytes.len() >= 11 && bytes[10] == labels::CODED => 3,
             Tag::PART if bytes.len() >= 10 && bytes[9] == parts::RUNS => 2,
+            Tag::COPC => 3,
             Tag::KEPC => 2,
             Tag::PART => 1,
             _ => 0,
@@ -257,9 +259,11 @@ impl Tag {
 
     /// Kept triangles, range coded (version 1.2, Edgebreaker only).
     pub const KEPC: Tag = Tag(*b"KEPC");
+    /// Vertex copies, range coded (Edgebreaker containers, version 1.3).
+    pub const COPC: Tag = Tag(*b"COPC");
 
     /// The sections a version-1 reader understands.
-    pub const KNOWN: [Tag; 16] = [
+    pub const KNOWN: [Tag; 17] = [
         Tag::META,
         Tag::MESH,
         Tag::GEOM,
@@ -271,6 +275,7 @@ impl Tag {
         Tag::STRP,
         Tag::LRBE,
         Tag::COPY,
+        Tag::COPC,
         Tag::KEPT,
         Tag::KEPC,
         Tag::PERM,

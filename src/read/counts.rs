@@ -1,11 +1,12 @@
 //! The sections around the connectivity: `META` (V11), `MESH` (V12), `GEOM` (V13), the
-//! per-vertex attributes (V14), `COPY` (V24), `KEPT` (V25) or `KEPC` (V50) and `PERM` (V26).
+//! per-vertex attributes (V14), `COPY` (V24) or `COPC` (V52), `KEPT` (V25) or `KEPC` (V50)
+//! and `PERM` (V26).
 
 use super::fields::{format_error, Fields};
 use super::{Limits, Sections};
 use crate::error::{Error, Result, Rule};
 use crate::format::layout::{self, MeshRecord};
-use crate::format::{kept, Kind, Metadata, Tag};
+use crate::format::{copied, kept, Kind, Metadata, Tag};
 use crate::words::{LeWords, Stored, Words};
 
 /// The `META` section, if present.
@@ -98,10 +99,14 @@ pub(super) fn attributes<'a>(sections: &Sections<'a>, m: u32) -> Result<[Option<
     ])
 }
 
-/// The `(copy, original)` pairs of `COPY` (empty without it).
-pub(super) fn copies<'a>(sections: &Sections<'a>, m: u32) -> Result<LeWords<'a>> {
+/// The `(copy, original)` pairs of `COPY`, or decoded from `COPC` (an Edgebreaker
+/// container's); empty without either.
+pub(super) fn copies<'a>(sections: &Sections<'a>, m: u32, edgebreaker: bool) -> Result<Stored<'a>> {
+    if let Some(coded) = sections.section(Tag::COPC) {
+        return copies_coded(sections, coded, m, edgebreaker).map(Stored::Decoded);
+    }
     let Some(section) = sections.section(Tag::COPY) else {
-        return Ok(LeWords::default());
+        return Ok(Stored::default());
     };
     let f = Fields::new(*section);
     let rule = Rule(24);
@@ -143,7 +148,37 @@ pub(super) fn copies<'a>(sections: &Sections<'a>, m: u32) -> Result<LeWords<'a>>
             ));
         }
     }
-    Ok(words)
+    Ok(Stored::File(words))
+}
+
+/// V52: `COPC` only in an Edgebreaker container and not with `COPY`; `k`, `n` and the stream
+/// within the section; the stream decodes to `k` copies below `m`, increasing, each after
+/// its original, which is no copy.
+fn copies_coded(
+    sections: &Sections,
+    section: &crate::read::sections::Section<'_>,
+    m: u32,
+    edgebreaker: bool,
+) -> Result<Vec<u32>> {
+    let f = Fields::new(*section);
+    let rule = Rule(52);
+    if sections.section(Tag::COPY).is_some() {
+        return Err(f.err(0, rule, "both COPY and COPC"));
+    }
+    if !edgebreaker {
+        return Err(f.err(0, rule, "COPC needs the Edgebreaker connectivity"));
+    }
+    let (k, n) = (f.u32(0, rule)?, f.u32(4, rule)?);
+    let at = copied::HEADER_LEN;
+    f.expect_len(Some(at as u64 + u64::from(n)), rule)?;
+    let base = section.offset as usize;
+    copied::decode(&section.bytes[at..], base + at, k, m).map_err(|(offset, message)| {
+        f.err(
+            (offset as usize).saturating_sub(base).min(f.len()),
+            rule,
+            message,
+        )
+    })
 }
 
 /// The kept triangles, three vertices each: those of `KEPT`, or decoded from `KEPC` (an

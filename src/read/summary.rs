@@ -158,6 +158,7 @@ impl Container<'_> {
             + section_len(Tag::STRP)
             + section_len(Tag::LRBE)
             + section_len(Tag::COPY)
+            + section_len(Tag::COPC)
             + section_len(Tag::KEPT)
             + section_len(Tag::KEPC);
         let triangles = self.triangles as u64 + (self.kept.count() / 3) as u64;

@@ -149,7 +149,7 @@ pub struct Container<'a> {
     pub(super) attributes: Vec<AttributeView<'a>>,
     pub(super) parts: Option<PartsView<'a>>,
     /// `(copy, original)` pairs, copies increasing.
-    pub(super) copies: LeWords<'a>,
+    pub(super) copies: Stored<'a>,
     /// Kept-aside triangles, three vertices each.
     pub(super) kept: Stored<'a>,
     /// Vertex then triangle permutations to the input order.
@@ -197,7 +197,7 @@ impl<'a> Container<'a> {
                 ),
             ));
         }
-        let copies = counts::copies(&sections, m)?;
+        let copies = counts::copies(&sections, m, mesh.kind == Kind::EDGEBREAKER)?;
         let copy_count = (copies.count() / 2) as u32;
         if m - copy_count != mesh.output_vertices {
             return Err(mesh_fields.err(
@@ -229,7 +229,7 @@ impl<'a> Container<'a> {
             positions: &positions,
             kept: mesh.kept,
             kept_triangles: &kept,
-            copies,
+            copies: &copies,
             holds: Default::default(),
             slots: Default::default(),
         };

@@ -308,7 +308,21 @@ fn sections(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<Se
         for &(copy, original) in &copies {
             write_fields(&mut p, &[copy, original]);
         }
-        sections.push((Tag::COPY, Flags::REQUIRED, p));
+        // Edgebreaker from level 1: range coded (FORMAT.md §3.6.1), when shorter.
+        let coded = (encoded.kind == crate::format::Kind::EDGEBREAKER
+            && options.level > 0
+            && crate::format::copied::codable(&copies))
+        .then(|| crate::format::copied::encode(&copies))
+        .filter(|s| crate::format::copied::HEADER_LEN + s.len() < p.len());
+        match coded {
+            Some(stream) => {
+                let mut c = Vec::new();
+                write_fields(&mut c, &[copies.len() as u32, stream.len() as u32]);
+                c.extend_from_slice(&stream);
+                sections.push((Tag::COPC, Flags::REQUIRED, c));
+            }
+            None => sections.push((Tag::COPY, Flags::REQUIRED, p)),
+        }
     }
     if !kept.is_empty() {
         let tris: Vec<[u32; 3]> = kept

@@ -29,7 +29,8 @@ pub(in crate::read) struct Context<'c, 'a> {
     pub kept: u32,
     /// The kept triangles, three vertices each.
     pub kept_triangles: &'c crate::words::Stored<'a>,
-    pub copies: LeWords<'a>,
+    /// The `(copy, original)` pairs.
+    pub copies: &'c crate::words::Stored<'a>,
     /// Which of the connectivity's triangle ids hold a triangle: made once, when `ATTR` or
     /// `PART` first needs it.
     pub holds: std::cell::OnceCell<Vec<bool>>,
