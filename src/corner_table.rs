@@ -57,6 +57,24 @@ fn prev(c: u32) -> u32 {
     }
 }
 
+/// `c.n.o.n` with opposites `o`: the next corner around `c`'s vertex, or `NONE`.
+#[inline(always)]
+fn swing(o: &[u32], c: u32) -> u32 {
+    match o[next(c) as usize] {
+        NONE => NONE,
+        d => next(d),
+    }
+}
+
+/// `c.p.o.p` with opposites `o`: the previous corner around `c`'s vertex, or `NONE`.
+#[inline(always)]
+fn unswing(o: &[u32], c: u32) -> u32 {
+    match o[prev(c) as usize] {
+        NONE => NONE,
+        d => prev(d),
+    }
+}
+
 /// What the pseudo-manifold conversion had to change, counted.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct Conversion {
@@ -324,14 +342,7 @@ fn glued_c_table(nv: u32, v: &[u32], o: &[u32]) -> Option<Vec<u32>> {
         }
     }
     // With `o` an involution, swinging is injective: every walk below ends.
-    let swing = |c: u32| match o[next(c) as usize] {
-        NONE => NONE,
-        d => next(d),
-    };
-    let unswing = |c: u32| match o[prev(c) as usize] {
-        NONE => NONE,
-        d => prev(d),
-    };
+    let (swing, unswing) = (|c| swing(o, c), |c| unswing(o, c));
     let mut c_table = vec![NONE; nv as usize];
     // The last vertex whose fan had this one as a neighbour.
     let mut stamp = vec![NONE; nv as usize];
@@ -384,14 +395,7 @@ fn glued_c_table(nv: u32, v: &[u32], o: &[u32]) -> Option<Vec<u32>> {
 /// Gives every fan its own vertex (copies for the second and later fans of a vertex) and builds
 /// `C`. Rewrites `v` for corners of copies; returns `C` and the copy-to-original map.
 fn split_fans(nv: u32, v: &mut [u32], o: &[u32]) -> Result<(Vec<u32>, Vec<u32>)> {
-    let swing = |c: u32| match o[next(c) as usize] {
-        NONE => NONE,
-        d => next(d),
-    };
-    let unswing = |c: u32| match o[prev(c) as usize] {
-        NONE => NONE,
-        d => prev(d),
-    };
+    let (swing, unswing) = (|c| swing(o, c), |c| unswing(o, c));
     let mut c_table = vec![NONE; nv as usize];
     let mut copy_of = Vec::new();
     let mut visited = vec![false; v.len()];

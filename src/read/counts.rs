@@ -103,7 +103,15 @@ pub(super) fn attributes<'a>(sections: &Sections<'a>, m: u32) -> Result<[Option<
 /// container's); empty without either.
 pub(super) fn copies<'a>(sections: &Sections<'a>, m: u32, edgebreaker: bool) -> Result<Stored<'a>> {
     if let Some(coded) = sections.section(Tag::COPC) {
-        return copies_coded(sections, coded, m, edgebreaker).map(Stored::Decoded);
+        let (plain, rule) = (Tag::COPY, Rule(52));
+        return coded_ids(
+            sections,
+            coded,
+            (plain, rule),
+            (m, edgebreaker),
+            copied::decode,
+        )
+        .map(Stored::Decoded);
     }
     let Some(section) = sections.section(Tag::COPY) else {
         return Ok(Stored::default());
@@ -151,41 +159,19 @@ pub(super) fn copies<'a>(sections: &Sections<'a>, m: u32, edgebreaker: bool) -> 
     Ok(Stored::File(words))
 }
 
-/// V52: `COPC` only in an Edgebreaker container and not with `COPY`; `k`, `n` and the stream
-/// within the section; the stream decodes to `k` copies below `m`, increasing, each after
-/// its original, which is no copy.
-fn copies_coded(
-    sections: &Sections,
-    section: &crate::read::sections::Section<'_>,
-    m: u32,
-    edgebreaker: bool,
-) -> Result<Vec<u32>> {
-    let f = Fields::new(*section);
-    let rule = Rule(52);
-    if sections.section(Tag::COPY).is_some() {
-        return Err(f.err(0, rule, "both COPY and COPC"));
-    }
-    if !edgebreaker {
-        return Err(f.err(0, rule, "COPC needs the Edgebreaker connectivity"));
-    }
-    let (k, n) = (f.u32(0, rule)?, f.u32(4, rule)?);
-    let at = copied::HEADER_LEN;
-    f.expect_len(Some(at as u64 + u64::from(n)), rule)?;
-    let base = section.offset as usize;
-    copied::decode(&section.bytes[at..], base + at, k, m).map_err(|(offset, message)| {
-        f.err(
-            (offset as usize).saturating_sub(base).min(f.len()),
-            rule,
-            message,
-        )
-    })
-}
-
 /// The kept triangles, three vertices each: those of `KEPT`, or decoded from `KEPC` (an
 /// Edgebreaker container, `edgebreaker`); empty without either.
 pub(super) fn kept<'a>(sections: &Sections<'a>, m: u32, edgebreaker: bool) -> Result<Stored<'a>> {
     if let Some(coded) = sections.section(Tag::KEPC) {
-        return kept_coded(sections, coded, m, edgebreaker).map(Stored::Decoded);
+        let (plain, rule) = (Tag::KEPT, Rule(50));
+        return coded_ids(
+            sections,
+            coded,
+            (plain, rule),
+            (m, edgebreaker),
+            kept::decode,
+        )
+        .map(Stored::Decoded);
     }
     let Some(section) = sections.section(Tag::KEPT) else {
         return Ok(Stored::default());
@@ -210,27 +196,40 @@ pub(super) fn kept<'a>(sections: &Sections<'a>, m: u32, edgebreaker: bool) -> Re
     Ok(Stored::File(words))
 }
 
-/// V50: `KEPC` only in an Edgebreaker container and not with `KEPT`; `k`, `n` and the stream
-/// within the section; the stream decodes to `k` triangles of vertices below `m`.
-fn kept_coded(
+/// The stream decoder of a range-coded section: (stream, its offset in the file, `k`, `m`)
+/// to the ids, or where and why the stream breaks its rule.
+type CodedIds = fn(&[u8], usize, u32, u32) -> std::result::Result<Vec<u32>, (u64, String)>;
+
+/// A range-coded section standing for a plain one, `COPC` for `COPY` (V52) or `KEPC` for
+/// `KEPT` (V50): only in an Edgebreaker container and not with the plain section; u32 `k`,
+/// u32 `n` and the `n` bytes of the stream exactly; the stream decodes (`decode`) to `k`
+/// entries of vertices below `m`.
+fn coded_ids(
     sections: &Sections,
     section: &crate::read::sections::Section<'_>,
-    m: u32,
-    edgebreaker: bool,
+    (plain, rule): (Tag, Rule),
+    (m, edgebreaker): (u32, bool),
+    decode: CodedIds,
 ) -> Result<Vec<u32>> {
     let f = Fields::new(*section);
-    let rule = Rule(50);
-    if sections.section(Tag::KEPT).is_some() {
-        return Err(f.err(0, rule, "both KEPT and KEPC"));
+    let coded = section.tag;
+    if sections.section(plain).is_some() {
+        return Err(f.err(0, rule, format!("both {plain} and {coded}")));
     }
     if !edgebreaker {
-        return Err(f.err(0, rule, "KEPC needs the Edgebreaker connectivity"));
+        return Err(f.err(
+            0,
+            rule,
+            format!("{coded} needs the Edgebreaker connectivity"),
+        ));
     }
     let (k, n) = (f.u32(0, rule)?, f.u32(4, rule)?);
+    // Both coded sections start with `k` and `n`.
+    const _: () = assert!(copied::HEADER_LEN == 8 && kept::HEADER_LEN == 8);
     let at = kept::HEADER_LEN;
     f.expect_len(Some(at as u64 + u64::from(n)), rule)?;
     let base = section.offset as usize;
-    kept::decode(&section.bytes[at..], base + at, k, m).map_err(|(offset, message)| {
+    decode(&section.bytes[at..], base + at, k, m).map_err(|(offset, message)| {
         f.err(
             (offset as usize).saturating_sub(base).min(f.len()),
             rule,

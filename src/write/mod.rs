@@ -302,27 +302,19 @@ fn sections(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<Se
 
     sections.push((encoded.tag, Flags::REQUIRED, encoded.payload));
 
+    // Edgebreaker from level 1: copies and kept triangles range coded (FORMAT.md §3.6.1,
+    // §3.7.1), when shorter.
+    let coding = encoded.kind == crate::format::Kind::EDGEBREAKER && options.level > 0;
     if !copies.is_empty() {
         let mut p = Vec::new();
         write_fields(&mut p, &[copies.len() as u32]);
         for &(copy, original) in &copies {
             write_fields(&mut p, &[copy, original]);
         }
-        // Edgebreaker from level 1: range coded (FORMAT.md §3.6.1), when shorter.
-        let coded = (encoded.kind == crate::format::Kind::EDGEBREAKER
-            && options.level > 0
-            && crate::format::copied::codable(&copies))
-        .then(|| crate::format::copied::encode(&copies))
-        .filter(|s| crate::format::copied::HEADER_LEN + s.len() < p.len());
-        match coded {
-            Some(stream) => {
-                let mut c = Vec::new();
-                write_fields(&mut c, &[copies.len() as u32, stream.len() as u32]);
-                c.extend_from_slice(&stream);
-                sections.push((Tag::COPC, Flags::REQUIRED, c));
-            }
-            None => sections.push((Tag::COPY, Flags::REQUIRED, p)),
-        }
+        let stream = (coding && crate::format::copied::codable(&copies))
+            .then(|| crate::format::copied::encode(&copies));
+        let coded = (Tag::COPC, copies.len(), stream);
+        sections.push(plain_or_coded((Tag::COPY, p), coded));
     }
     if !kept.is_empty() {
         let tris: Vec<[u32; 3]> = kept
@@ -334,19 +326,11 @@ fn sections(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<Se
         for tri in &tris {
             write_fields(&mut p, tri);
         }
-        // Edgebreaker from level 1: range coded (FORMAT.md §3.7.1), when shorter.
-        let coded = (encoded.kind == crate::format::Kind::EDGEBREAKER && options.level > 0)
-            .then(|| crate::format::kept::encode(&tris))
-            .filter(|s| crate::format::kept::HEADER_LEN + s.len() < p.len());
-        match coded {
-            Some(stream) => {
-                let mut c = Vec::new();
-                write_fields(&mut c, &[kept.len() as u32, stream.len() as u32]);
-                c.extend_from_slice(&stream);
-                sections.push((Tag::KEPC, Flags::REQUIRED, c));
-            }
-            None => sections.push((Tag::KEPT, Flags::REQUIRED, p)),
-        }
+        let stream = coding.then(|| crate::format::kept::encode(&tris));
+        sections.push(plain_or_coded(
+            (Tag::KEPT, p),
+            (Tag::KEPC, kept.len(), stream),
+        ));
     }
     if options.keep_order {
         // Output order: non-copy vertices in container order; the connectivity's triangles in
@@ -364,4 +348,24 @@ fn sections(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<Se
         sections.push((Tag::PERM, Flags::NONE, p));
     }
     Ok(sections)
+}
+
+/// The required section `plain`, or `coded` (its tag, its entry count `k` and a range-coded
+/// stream of the entries) when that is shorter: u32 `k`, u32 `n`, then the `n` bytes of the
+/// stream (`COPC`, `KEPC`).
+fn plain_or_coded(
+    (plain, payload): (Tag, Vec<u8>),
+    (coded, k, stream): (Tag, usize, Option<Vec<u8>>),
+) -> SectionBytes {
+    const _: () = assert!(crate::format::copied::HEADER_LEN == 8);
+    const _: () = assert!(crate::format::kept::HEADER_LEN == 8);
+    match stream {
+        Some(stream) if 8 + stream.len() < payload.len() => {
+            let mut c = Vec::new();
+            write_fields(&mut c, &[k as u32, stream.len() as u32]);
+            c.extend_from_slice(&stream);
+            (coded, Flags::REQUIRED, c)
+        }
+        _ => (plain, Flags::REQUIRED, payload),
+    }
 }

@@ -105,26 +105,33 @@ fn force_wide() -> bool {
 #[cfg(all(test, feature = "generate"))]
 mod tests {
     use super::FORCE_WIDE;
-    use crate::edgebreaker::{decode, encode, Limits};
+    use crate::edgebreaker::{decode, decode_glued, encode, Limits};
     use crate::generate::{self, Rng};
+    use crate::ids::NONE;
     use crate::CornerTable;
 
     /// Both chain-entry widths give the same bytes and the same triangles, on meshes with
     /// handles, holes, several components and defects.
-    #[test]
-    fn chain_words_agree() {
-        let mut rng = Rng::new(11);
-        let mut mesh = generate::irregular_torus(3000, 5);
+    /// An irregular torus of about `triangles` triangles beside a small torus, with
+    /// `handles` handles, `holes` holes and `defects` defects (seeded by `seed`).
+    fn hard_table(seed: u64, triangles: u32, [handles, holes, defects]: [usize; 3]) -> CornerTable {
+        let mut rng = Rng::new(seed);
+        let mut mesh = generate::irregular_torus(triangles, 5);
         generate::append(&mut mesh, &generate::torus(5, 7));
-        for _ in 0..3 {
+        for _ in 0..handles {
             let t = rng.below(mesh.triangles.len() as u32) as usize;
             if let Some(u) = generate::far_triangle(&mesh, t, &mut rng) {
                 generate::add_handle(&mut mesh, t, u);
             }
         }
-        generate::punch_holes(&mut mesh, 6, &mut rng);
-        generate::add_defects(&mut mesh, 4, &mut rng);
-        let table = CornerTable::from_mesh(&mesh).unwrap();
+        generate::punch_holes(&mut mesh, holes, &mut rng);
+        generate::add_defects(&mut mesh, defects, &mut rng);
+        CornerTable::from_mesh(&mesh).unwrap()
+    }
+
+    #[test]
+    fn chain_words_agree() {
+        let table = hard_table(11, 3000, [3, 6, 4]);
         let narrow = encode(&table).unwrap();
         assert!(narrow.stats.handle_s > 0 && narrow.stats.boundary_s > 0);
         let narrow_dec = decode(&narrow.bytes, &Limits::default()).unwrap();
@@ -135,32 +142,13 @@ mod tests {
         assert_eq!(narrow.bytes, wide.bytes);
         assert_eq!(narrow_dec, wide_dec);
     }
-}
-
-#[cfg(all(test, feature = "generate"))]
-mod glued_tests {
-    use crate::edgebreaker::{decode_glued, encode, Limits};
-    use crate::generate::{self, Rng};
-    use crate::ids::NONE;
-    use crate::CornerTable;
 
     /// The table from the decoder's glued edges is the table built from its triangles, on
     /// meshes with handles, holes, components and defects, and when the glued edges are
     /// damaged (then it is built from the triangles).
     #[test]
     fn glued_table_is_the_built_table() {
-        let mut rng = Rng::new(5);
-        let mut mesh = generate::irregular_torus(2000, 3);
-        generate::append(&mut mesh, &generate::torus(4, 6));
-        for _ in 0..2 {
-            let t = rng.below(mesh.triangles.len() as u32) as usize;
-            if let Some(u) = generate::far_triangle(&mesh, t, &mut rng) {
-                generate::add_handle(&mut mesh, t, u);
-            }
-        }
-        generate::punch_holes(&mut mesh, 4, &mut rng);
-        generate::add_defects(&mut mesh, 3, &mut rng);
-        let table = CornerTable::from_mesh(&mesh).unwrap();
+        let table = hard_table(5, 2000, [2, 4, 3]);
         let bytes = encode(&table).unwrap().bytes;
         let (decoded, o) = decode_glued(&bytes, &Limits::default()).unwrap();
         let nv = decoded.vertex_count;
