@@ -116,15 +116,25 @@ pub fn save_with(
     out.flush().map_err(io_err)
 }
 
-/// Validates a container's bytes once and gives the zero-copy view: the connectivity
-/// answering [`CornerOps`] for every kind, positions and attributes, and the map back to the
-/// input's vertex ids. With default [`read::Limits`].
+/// Checks that a container's bytes are well formed, in one pass at close to memory speed,
+/// and gives the zero-copy view: the connectivity answering [`CornerOps`] for every kind,
+/// positions and attributes, and the map back to the input's vertex ids. Every answer is
+/// in range; the semantic rules (opposites that face each other, fans) are checked by
+/// [`open_verified`] or [`Container::verify`]. With default [`read::Limits`].
 ///
 /// # Errors
 /// [`Error::Format`] naming the section, offset and rule broken, and the other errors of
 /// [`read::open`].
 pub fn open(bytes: &[u8]) -> Result<Container<'_>> {
     read::open(bytes, &read::Limits::default())
+}
+
+/// [`open`], and every semantic rule checked too: the operators' answers are the mesh's.
+///
+/// # Errors
+/// As [`read::open_verified`].
+pub fn open_verified(bytes: &[u8]) -> Result<Container<'_>> {
+    read::open_verified(bytes, &read::Limits::default())
 }
 
 /// The README's code compiles (`cargo test --doc`).

@@ -83,15 +83,27 @@ pub trait CornerOps {
     }
 }
 
+/// Most steps of a walk around a vertex or across triangles: a corner count no valid mesh
+/// exceeds. Walks stop there, so that on tables whose operators answer ids in range but do
+/// not form fans (a container opened without [`crate::read::open_verified`]'s checks)
+/// they still end.
+#[inline(always)]
+fn walk_limit<M: CornerOps + ?Sized>(mesh: &M) -> u32 {
+    mesh.triangle_id_bound().saturating_mul(3)
+}
+
 /// The first corner of `c`'s fan: unswinging from `c` until there is no unswing (an open
 /// fan) or the walk comes back to `c` (a closed fan, where `c` itself is returned). At most
-/// one step per corner of the vertex, when swing is injective (every valid mesh).
+/// one step per corner of the vertex, when swing is injective (every valid mesh), and never
+/// more than the walk limit.
 pub fn fan_start<M: CornerOps + ?Sized>(mesh: &M, c: Corner) -> Corner {
     let mut d = c;
+    let mut steps = walk_limit(mesh);
     while let Some(e) = mesh.unswing(d) {
-        if e == c {
+        if e == c || steps == 0 {
             return c;
         }
+        steps -= 1;
         d = e;
     }
     d
@@ -103,6 +115,8 @@ pub struct Star<'a, M: CornerOps + ?Sized> {
     start: Corner,
     current: Option<Corner>,
     backwards: bool,
+    /// Corners still allowed (the walk limit).
+    left: u32,
 }
 
 impl<M: CornerOps + ?Sized> Iterator for Star<'_, M> {
@@ -110,6 +124,10 @@ impl<M: CornerOps + ?Sized> Iterator for Star<'_, M> {
 
     fn next(&mut self) -> Option<Corner> {
         let c = self.current?;
+        if self.left == 0 {
+            return None;
+        }
+        self.left -= 1;
         self.current = if self.backwards {
             self.mesh.unswing(c)
         } else {
@@ -136,6 +154,7 @@ pub fn star<M: CornerOps + ?Sized>(mesh: &M, v: Vertex) -> Star<'_, M> {
         start: start.unwrap_or(Corner(0)),
         current: start,
         backwards: false,
+        left: walk_limit(mesh),
     }
 }
 
@@ -144,12 +163,14 @@ pub fn valence<M: CornerOps + ?Sized>(mesh: &M, v: Vertex) -> u32 {
     let Some(start) = mesh.vertex_corner(v) else {
         return 0;
     };
+    let limit = walk_limit(mesh);
     let mut count = 0;
     let mut c = start;
     loop {
         count += 1;
         match mesh.swing(c) {
             Some(d) if d == start => return count,
+            _ if count >= limit => return count,
             Some(d) => c = d,
             None => break,
         }
@@ -157,6 +178,9 @@ pub fn valence<M: CornerOps + ?Sized>(mesh: &M, v: Vertex) -> u32 {
     // Open fan: count the corners before the start too, and the extra edge.
     let mut c = start;
     while let Some(d) = mesh.unswing(c) {
+        if count >= limit {
+            break;
+        }
         count += 1;
         c = d;
     }
@@ -259,6 +283,10 @@ fn walk_contour<M: CornerOps + ?Sized>(
         let t = mesh.triangle(entry);
         if t == stop {
             return true;
+        }
+        if out.len() >= mesh.triangle_id_bound() as usize {
+            // More triangles than the mesh has: the tables do not form a surface.
+            return false;
         }
         out.push(t);
         // A cut triangle has exactly two cut edges: leave by the one we did not enter by.

@@ -30,14 +30,15 @@ fn v01_short_file_or_bad_magic() {
 #[test]
 fn v02_other_major_version() {
     let bytes = vector("closed_tetrahedron.lrm");
+    let minor = u16::from_le_bytes([bytes[10], bytes[11]]);
     for major in [0u16, 2, 0xFFFF] {
         let bad = patch(&bytes, |b| b[8..10].copy_from_slice(&major.to_le_bytes()));
         match open(&bad, &Limits::default()) {
             Err(Error::UnsupportedVersion {
                 major: m,
-                minor: 0,
+                minor: n,
                 supported: 1,
-            }) => assert_eq!(m, major),
+            }) => assert_eq!((m, n), (major, minor)),
             other => panic!("major {major}: {other:?}"),
         }
     }

@@ -26,7 +26,7 @@ fn v15_lrtb_counts() {
     let field = |f: usize, x: u32| forge(&bytes, Tag::LRTB, |p| put(p, f, x));
     breaks(&field(0, 5), 15, "LRTB", at, "section MESH says 4");
     breaks(&field(0, 3), 15, "LRTB", at, "section MESH says 4");
-    breaks(&field(20, 1), 15, "LRTB", at + 20, "reserved");
+    breaks(&field(20, 2), 15, "LRTB", at + 20, "unknown flag bits");
     // m_r > m; R = 0 iff m_r = 0; 4R ≤ m_r.
     for m_r in [5, 0, 3] {
         breaks(&field(4, m_r), 15, "LRTB", at + 4, "ring vertices");
@@ -236,9 +236,14 @@ fn v21_degenerate_triangles() {
 #[test]
 fn v22_opposites() {
     // The tetrahedron's L[1] = 3 made 0: slot 2 becomes (1, 0, 2), whose corner 10 the
-    // ring rules pair with corner 12 of slot 3 across an edge they do not share.
-    let bytes = vector("closed_tetrahedron.lrm");
+    // ring rules pair with corner 12 of slot 3 across an edge they do not share. Slot 2 was
+    // a redundant copy and now holds a fifth triangle: MESH says so too (without PERM, whose
+    // counts would then differ), so that the counts of a well-formed file agree.
+    let bytes = forge_sections(&vector("closed_tetrahedron.lrm"), |s| {
+        s.retain(|section| section.0 != Tag::PERM)
+    });
     let bad = forge(&bytes, Tag::LRTB, |p| set_lrtb(p, LR, 2, 0));
+    let bad = forge(&bad, Tag::MESH, |p| put(p, 8, 5));
     breaks(
         &bad,
         22,
@@ -366,6 +371,38 @@ fn open_fan<M: CornerOps>(mesh: &M, vertices: std::ops::Range<u32>) -> (u32, Cor
         })
         .next()
         .expect("a vertex with an open fan of two corners")
+}
+
+/// [V53] The flag that every boundary runs along the ring, set on a mesh whose LR has
+/// corners off the ring without an opposite (the writer leaves it clear there): a verifying
+/// reader refuses it, in `LRTB` and `LRBE`; a well-formed open takes it at its word and
+/// answers in range.
+#[test]
+fn v53_boundary_flag_holds() {
+    for (connectivity, tag, at) in [
+        (Connectivity::Lr, Tag::LRTB, 20),
+        (Connectivity::LrCompact, Tag::LRBE, 28),
+    ] {
+        let bytes = encoded(&soup(), connectivity);
+        assert_eq!(
+            get(&payload(&bytes, tag), at),
+            0,
+            "the writer leaves the flag clear"
+        );
+        let bad = forge(&bytes, tag, |p| put(p, at, 1));
+        breaks(
+            &bad,
+            53,
+            &tag.name(),
+            section_at(&bytes, tag) + at as u64,
+            "every boundary runs along the ring",
+        );
+    }
+    // The writer sets the flag where it holds, as on closed meshes.
+    for name in ["closed_tetrahedron.lrm", "torus_with_t0.lrm"] {
+        let bytes = vector(name);
+        assert_eq!(get(&payload(&bytes, Tag::LRTB), 20), 1, "{name}");
+    }
 }
 
 /// [V38] `v.c = NONE` iff no triangle has `v`; an open fan's `v.c` starts it. For `LRTB`

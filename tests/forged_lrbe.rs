@@ -22,7 +22,7 @@ fn v33_lrbe_counts() {
     let at = section_at(&bytes, Tag::LRBE);
     let field = |f: usize, x: u32| forge(&bytes, Tag::LRBE, |p| put(p, f, x));
     breaks(&field(0, 24), 33, "LRBE", at, "section MESH says 25");
-    breaks(&field(28, 1), 33, "LRBE", at + 28, "reserved");
+    breaks(&field(28, 2), 33, "LRBE", at + 28, "unknown flag bits");
     for m_r in [26, 0, 3] {
         breaks(&field(4, m_r), 33, "LRBE", at + 4, "ring vertices");
     }
@@ -319,15 +319,31 @@ fn v37_lrbe_corners_and_lr_rules() {
         lrbe_at(&tetra, "PAIRS", 0),
         "slot 0 points to slot 2",
     );
-    // Pair 1 = 0x3FFF8002 (offsets +2, −1) made 0x3FFFFFFF (−1, −1): its left tip 3 made 0,
-    // and corner 10 pairs with corner 12 across an edge they do not share.
-    let bad = set(1, 0x3FFF_FFFF);
+    // [V22]: a T0 corner whose opposite the left or right rule finds, coded as having none
+    // (the triangle count unchanged): its partner's opposite no longer points back.
+    let m_r = lr.ring_vertices();
+    let (k, partner) = (8 * m_r..8 * m_r + 4 * lr.t0_count())
+        .filter(|c| c & 3 != 3)
+        .find_map(|c| {
+            let o = lr.opposite(Corner(c))?.0;
+            let p = payload(&bytes, Tag::LRBE);
+            let row = ((c - 8 * m_r) / 4) as usize;
+            let code = get16(&p, lrbe_word(&p, ROWS, 4 * row + 3)) >> (2 * (c & 3)) & 3;
+            (o < 8 * m_r && code < 2).then_some((c, o))
+        })
+        .expect("a T0 corner found by a ring rule");
+    let (j, i) = (((k - 8 * m_r) / 4) as usize, k & 3);
+    let bad = forge(&bytes, Tag::LRBE, |p| {
+        let at = lrbe_word(p, ROWS, 4 * j + 3);
+        let codes = get16(p, at) | 3 << (2 * i);
+        put16(p, at, codes)
+    });
     breaks(
         &bad,
         22,
         "LRBE",
-        lrbe_at(&tetra, "PAIRS", 1),
-        "corner 10 and its opposite 12",
+        lrbe_at(&bytes, "PAIRS", (partner >> 3) as usize),
+        &format!("corner {partner} and its opposite {k}"),
     );
     // [V38] on LRBE: in v38_vertex_corner_starts_its_fan.
 }

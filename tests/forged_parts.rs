@@ -211,6 +211,17 @@ fn coded_labels_decode_right() {
     assert_eq!(a.parts.unwrap().parts, b.parts.unwrap().parts);
     let lr = encode(&torus(), &EncodeOptions::default()).unwrap();
     assert_eq!(PartsHeader::parse(&payload(&lr, Tag::PART)).labels, CODED);
+    // Minor version 4 for the flag of its closed LR (§6), 3 for the labels alone.
+    assert_eq!(lr[10], 4, "minor version 4");
+    let lr = encode(
+        &torus(),
+        &EncodeOptions {
+            connectivity: lrmesh::write::Connectivity::Strips,
+            ..EncodeOptions::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(PartsHeader::parse(&payload(&lr, Tag::PART)).labels, CODED);
     assert_eq!(lr[10], 3, "minor version 3");
 }
 

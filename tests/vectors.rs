@@ -14,7 +14,7 @@ use common::{assert_same_up_to_rotation, assert_within_half_a_step};
 use lrmesh::format::Metadata;
 use lrmesh::io::{read_mesh, ReadOptions};
 use lrmesh::lr::LrLayout;
-use lrmesh::read::{open, Connectivity as View, Limits};
+use lrmesh::read::{open, open_verified, Connectivity as View, Limits};
 use lrmesh::write::{encode, Connectivity, EncodeOptions};
 use lrmesh::CornerOps;
 
@@ -83,16 +83,21 @@ fn listing(name: &str, bytes: &[u8]) -> String {
             &mut out,
             name,
             lr,
-            format!("{n} triangles, {} ring vertices", lr.ring_vertices()),
+            format!(
+                "{n} triangles, {} ring vertices, boundaries on the ring: {}",
+                lr.ring_vertices(),
+                lr.boundaries_on_ring()
+            ),
         ),
         View::LrCompact(lr) => corner_listing(
             &mut out,
             name,
             lr,
             format!(
-                "{n} triangles, {} ring vertices, {} T0 rows",
+                "{n} triangles, {} ring vertices, {} T0 rows, boundaries on the ring: {}",
                 lr.ring_vertices(),
-                lr.t0_count()
+                lr.t0_count(),
+                lr.boundaries_on_ring()
             ),
         ),
         View::Strips(strips) => corner_listing(
@@ -349,7 +354,9 @@ fn vectors_match() {
             // Decoding gives back the source exactly (the vectors keep the input order),
             // every corner's attribute values and every triangle's part included; quantized
             // positions as listed, within half a step of the source's.
-            let back = open(&stored, &Limits::default()).unwrap().to_mesh();
+            let back = open_verified(&stored, &Limits::default())
+                .unwrap()
+                .to_mesh();
             let mut mesh = mesh;
             if let Some(bits) = bits {
                 assert_eq!(

@@ -196,9 +196,17 @@ pub struct LrtbHeader {
     pub t0: u32,
     /// `ni`: `VO*` records.
     pub records: u32,
+    /// Flags: [`LR_BOUNDARIES_ON_RING`] or 0.
+    pub flags: u32,
     /// Reserved, 0.
-    pub reserved: [u32; 3],
+    pub reserved: [u32; 2],
 }
+
+/// `LRTB` and `LRBE` flag (FORMAT.md §3.5, rule V53): every corner without an opposite is
+/// the tip corner of a left slot whose right slot is missing, so that `v.c` of a ring vertex
+/// is found without walking its fan. Derived from the tables by a verifying reader; a
+/// reader that only checks that a file is well formed takes it from here.
+pub const LR_BOUNDARIES_ON_RING: u32 = 1;
 
 impl LrtbHeader {
     /// Bytes of the header.
@@ -217,21 +225,22 @@ impl LrtbHeader {
 
     /// The header at the start of `b` (at least [`LrtbHeader::LEN`] bytes).
     pub fn read(b: &[u8]) -> LrtbHeader {
-        let [m, m_r, rings, t0, records, r0, r1, r2] = read_fields(b);
+        let [m, m_r, rings, t0, records, flags, r0, r1] = read_fields(b);
         LrtbHeader {
             m,
             m_r,
             rings,
             t0,
             records,
-            reserved: [r0, r1, r2],
+            flags,
+            reserved: [r0, r1],
         }
     }
 
     /// The header's bytes.
     pub fn to_bytes(&self) -> Vec<u8> {
         let mut out = Vec::with_capacity(Self::LEN);
-        let [r0, r1, r2] = self.reserved;
+        let [r0, r1] = self.reserved;
         write_fields(
             &mut out,
             &[
@@ -240,9 +249,9 @@ impl LrtbHeader {
                 self.rings,
                 self.t0,
                 self.records,
+                self.flags,
                 r0,
                 r1,
-                r2,
             ],
         );
         out
@@ -287,8 +296,8 @@ pub struct LrbeHeader {
     pub overflow_rows: u32,
     /// The HYBRID-RING-EXPANDER period the writer used (informative).
     pub period: u32,
-    /// Reserved, 0.
-    pub reserved: u32,
+    /// Flags: [`LR_BOUNDARIES_ON_RING`] or 0.
+    pub flags: u32,
 }
 
 impl LrbeHeader {
@@ -310,7 +319,7 @@ impl LrbeHeader {
 
     /// The header at the start of `b` (at least [`LrbeHeader::LEN`] bytes).
     pub fn read(b: &[u8]) -> LrbeHeader {
-        let [m, m_r, rings, t0, record_units, overflow_rows, period, reserved] = read_fields(b);
+        let [m, m_r, rings, t0, record_units, overflow_rows, period, flags] = read_fields(b);
         LrbeHeader {
             m,
             m_r,
@@ -319,7 +328,7 @@ impl LrbeHeader {
             record_units,
             overflow_rows,
             period,
-            reserved,
+            flags,
         }
     }
 
@@ -336,7 +345,7 @@ impl LrbeHeader {
                 self.record_units,
                 self.overflow_rows,
                 self.period,
-                self.reserved,
+                self.flags,
             ],
         );
         out

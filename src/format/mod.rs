@@ -24,7 +24,7 @@ pub const MAGIC: [u8; 8] = [0x89, b'L', b'R', b'M', b'\r', b'\n', 0x1a, b'\n'];
 /// Major version written and read. A reader rejects any other major version.
 pub const MAJOR: u16 = 1;
 /// Newest minor version written. Readers accept any minor version of their major version.
-pub const MINOR: u16 = 3;
+pub const MINOR: u16 = 4;
 
 /// The minor version a file of these sections (tags and payloads) is written with: 3 with
 /// `PART` labels coded, normals predicted from their neighbours only or `COPC`; 2 with a
@@ -45,6 +45,9 @@ pub fn minor_for<'a>(sections: impl IntoIterator<Item = (Tag, &'a [u8])>) -> u16
             Tag::PART if bytes.len() >= 11 && bytes[10] == labels::CODED => 3,
             Tag::PART if bytes.len() >= 10 && bytes[9] == parts::RUNS => 2,
             Tag::COPC => 3,
+            // The LR flags word (FORMAT.md §3.5 and §3.5d).
+            Tag::LRTB if bytes.len() >= 24 && le_u32(bytes, 20) != 0 => 4,
+            Tag::LRBE if bytes.len() >= 32 && le_u32(bytes, 28) != 0 => 4,
             Tag::KEPC => 2,
             Tag::PART => 1,
             _ => 0,

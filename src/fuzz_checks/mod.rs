@@ -17,7 +17,7 @@ pub use round_trip::{
 
 use crate::io::{read_mesh_bytes, MeshFormat, ReadOptions};
 use crate::ops::{self, CornerOps, Plane};
-use crate::read::{open, Limits};
+use crate::read::{open, open_verified, Limits};
 use crate::write::{assemble, encode, Connectivity, EncodeOptions, DEFAULT_LEVEL};
 use crate::{generate, Vertex};
 
@@ -85,16 +85,42 @@ pub fn edgebreaker(data: &[u8]) {
     }
 }
 
-/// Any bytes given to the container reader: an error, or a container that decodes to a mesh
-/// that validates and whose connectivity, of whatever kind, answers every operator of every
-/// corner with a valid id, with stars and contours that terminate. (Checksums are skipped
-/// under `cfg(fuzzing)` so that the fuzzer reaches the section parsers.)
+/// Any bytes given to the container reader. [`open`]: an error, or a container whose
+/// connectivity, of whatever kind, answers every operator of every corner with an id in range
+/// and whose walks end ([`walk_in_range`]), and that decodes to a mesh without panicking.
+/// [`open_verified`]: the same error when [`open`] fails; else an error of a semantic rule,
+/// or a container that decodes to a mesh that validates and whose opposites face each other
+/// ([`walk`]). (Checksums are skipped under `cfg(fuzzing)` so that the fuzzer reaches the
+/// section parsers.)
 pub fn container(data: &[u8]) {
-    let Ok(file) = open(data, &Limits::default()) else {
-        return;
+    let limits = Limits::default();
+    let quick = open(data, &limits);
+    let verified = open_verified(data, &limits);
+    let file = match (quick, &verified) {
+        (Err(e), Err(f)) => {
+            assert_eq!(
+                e.to_string(),
+                f.to_string(),
+                "both levels report the first error"
+            );
+            return;
+        }
+        (Err(e), Ok(_)) => panic!("a file that is not well formed verifies: {e}"),
+        (Ok(file), _) => file,
     };
-    file.to_mesh().validate().expect("a decoded mesh validates");
-    walk(&file);
+    walk_in_range(&file);
+    file.to_mesh();
+    match verified {
+        Ok(file) => {
+            file.to_mesh().validate().expect("a decoded mesh validates");
+            walk(&file);
+        }
+        Err(crate::Error::Format(e)) => assert!(
+            crate::read::SEMANTIC_RULES.contains(&e.rule),
+            "only a semantic rule fails after a well-formed open: {e}"
+        ),
+        Err(e) => panic!("only a semantic rule fails after a well-formed open: {e}"),
+    }
 }
 
 /// A valid container of a small generated mesh, in the kind and with the options the first
@@ -207,6 +233,47 @@ fn with_seams_and_parts(mesh: &mut crate::Mesh) {
         parts.of_triangle.push(i);
     }
     mesh.parts = Some(parts);
+}
+
+/// On a container that is only well formed: every operator of every corner answers an id in
+/// range (a corner of the mesh, a vertex below the bound), every attribute index is in range,
+/// and stars, valences, normals and contours end.
+pub fn walk_in_range(file: &crate::Container) {
+    let mesh = file.connectivity();
+    let m = mesh.vertex_id_bound();
+    let positions: Vec<[f32; 3]> = (0..m).map(|v| file.position(Vertex(v))).collect();
+    for c in mesh.corners() {
+        assert!(mesh.vertex(c).0 < m);
+        assert!(mesh.triangle(c).0 < mesh.triangle_id_bound());
+        for d in [mesh.next(c), mesh.prev(c)]
+            .into_iter()
+            .chain(mesh.opposite(c))
+            .chain(
+                [mesh.swing(c), mesh.unswing(c), mesh.left(c), mesh.right(c)]
+                    .into_iter()
+                    .flatten(),
+            )
+        {
+            assert!(mesh.is_corner(d), "corner {c} leads to {d}, not a corner");
+        }
+        for a in file.attributes() {
+            assert!(file.value_index(a, c) < a.value_count());
+        }
+    }
+    for v in mesh.vertices() {
+        if let Some(c) = mesh.vertex_corner(v) {
+            assert!(mesh.is_corner(c));
+        }
+        assert!(ops::star(mesh, v).all(|c| mesh.is_corner(c)));
+        ops::valence(mesh, v);
+        ops::vertex_normal(mesh, &positions, v);
+        file.output_vertex(v);
+    }
+    let plane = Plane {
+        normal: [0.3, -0.2, 1.0],
+        offset: 0.1,
+    };
+    ops::contours(mesh, &positions, &plane);
 }
 
 /// Every operator of every corner answers with a valid id, and every attribute a value in

@@ -198,7 +198,7 @@ pub fn read_mesh_bytes(bytes: &[u8], format: MeshFormat, opts: &ReadOptions) -> 
         MeshFormat::Stl => stl::read(bytes, opts),
         MeshFormat::Gltf | MeshFormat::Glb => gltf::read(bytes, opts),
         MeshFormat::Lrm => Ok(Loaded {
-            mesh: crate::read::open(bytes, &crate::read::Limits::default())?.to_mesh(),
+            mesh: crate::read::open_verified(bytes, &crate::read::Limits::default())?.to_mesh(),
             warnings: Vec::new(),
         }),
     }?;

@@ -427,6 +427,7 @@ pub trait LrLayout {
 
     /// Whether `t` is a canonical triangle id (not a redundant copy, unused or a missing right
     /// triangle).
+    #[inline]
     fn is_triangle(&self, t: Triangle) -> bool {
         let (t, m_r) = (t.0, self.ring_vertices());
         if t >= 2 * m_r {
@@ -436,6 +437,7 @@ pub trait LrLayout {
     }
 
     /// Whether `c` is a corner of a canonical triangle.
+    #[inline]
     fn is_corner(&self, c: Corner) -> bool {
         c.0 & 3 != 3 && self.is_triangle(Triangle(c.0 >> 2))
     }

@@ -3,18 +3,24 @@
 //! little-endian words.
 
 use super::fields::Fields;
-use super::lr_rules::{check_lr_opposites, check_rings, check_vertex_corners};
+use super::lr_rules::{check_rings, check_vertex_corners, verified_boundaries, SlotMap};
 use super::Sections;
 use crate::corner_table::NONE;
 use crate::error::{Result, Rule};
-use crate::format::layout::LrtbHeader;
+use crate::format::layout::{LrtbHeader, LR_BOUNDARIES_ON_RING};
 use crate::format::Tag;
 use crate::ids::Corner;
-use crate::lr::{boundaries_on_ring_given, LrLayout, LrTables, IRREGULAR, NULL, VALUE, WART};
+use crate::lr::{LrTables, IRREGULAR, NULL, VALUE, WART};
 use crate::words::{LeWords, Words};
 
-/// The `LRTB` section as tables, after checking every rule the operators rely on.
-pub(super) fn lr_tables<'a>(sections: &Sections<'a>, m: u32) -> Result<LrTables<LeWords<'a>>> {
+/// The `LRTB` section as tables and the number of canonical triangles they hold, after
+/// checking the rules that keep every operator's answer in range; with `verify`, every rule
+/// (FORMAT.md §3.5, §5.1).
+pub(super) fn lr_tables<'a>(
+    sections: &Sections<'a>,
+    m: u32,
+    verify: bool,
+) -> Result<(LrTables<LeWords<'a>>, u64)> {
     let f = Fields::new(sections.required(Tag::LRTB)?);
     // [V15] counts and length.
     f.expect_at_least(LrtbHeader::LEN, Rule(15))?;
@@ -27,8 +33,11 @@ pub(super) fn lr_tables<'a>(sections: &Sections<'a>, m: u32) -> Result<LrTables<
             format!("{} vertices, section MESH says {m}", h.m),
         ));
     }
+    if h.flags & !LR_BOUNDARIES_ON_RING != 0 {
+        return Err(f.err(20, Rule(15), "unknown flag bits are set"));
+    }
     if let Some(i) = h.reserved.iter().position(|&r| r != 0) {
-        return Err(f.err(20 + 4 * i, Rule(15), "reserved field is not zero"));
+        return Err(f.err(24 + 4 * i, Rule(15), "reserved field is not zero"));
     }
     if m >= NULL {
         return Err(f.err(
@@ -141,7 +150,8 @@ pub(super) fn lr_tables<'a>(sections: &Sections<'a>, m: u32) -> Result<LrTables<
         ));
     }
     // [V20] stored corners are canonical corners or NONE.
-    let corner_ok = |x: u32| x == NONE || tables.is_corner(Corner(x));
+    let slots = SlotMap::new(&tables);
+    let corner_ok = |x: u32| x == NONE || slots.is_corner(x);
     for (array, words) in [(5, vo_o), (6, vo_star), (7, c)] {
         for i in 0..words.count() {
             // VO* records start with a tip vertex, checked above.
@@ -157,16 +167,21 @@ pub(super) fn lr_tables<'a>(sections: &Sections<'a>, m: u32) -> Result<LrTables<
         }
     }
 
-    // [V19], [V21], [V22]; then [V23] and [V38] with the fan rule the file allows.
-    let without_opposite = check_lr_opposites(&tables, &f, corner_at)?;
-    tables.boundaries_on_ring = boundaries_on_ring_given(&tables, without_opposite);
-    check_vertex_corners(&tables, Rule(23), |v, rule, message| {
-        let at = if v < m_r {
-            arrays[3].at(2 * v as usize)
-        } else {
-            arrays[7].at((v - m_r) as usize)
-        };
-        f.err(at, rule, message)
-    })?;
-    Ok(tables)
+    // [V19], then the verifying reader's rules: [V21], [V22], [V53]; [V23] and [V38] with
+    // the fan rule the file allows.
+    slots.check_jumps(&tables, &f, corner_at)?;
+    let flag = h.flags & LR_BOUNDARIES_ON_RING != 0;
+    tables.boundaries_on_ring = flag;
+    if verify {
+        tables.boundaries_on_ring = verified_boundaries(&tables, &f, corner_at, flag, 20)?;
+        check_vertex_corners(&tables, Rule(23), |v, rule, message| {
+            let at = if v < m_r {
+                arrays[3].at(2 * v as usize)
+            } else {
+                arrays[7].at((v - m_r) as usize)
+            };
+            f.err(at, rule, message)
+        })?;
+    }
+    Ok((tables, slots.triangles + h.t0 as u64))
 }

@@ -3,22 +3,25 @@
 //! place as [`CompactTables`] over the buffer's little-endian words and units.
 
 use super::fields::Fields;
-use super::lr_rules::{check_lr_opposites, check_rings, check_vertex_corners};
+use super::lr_rules::{check_rings, check_vertex_corners, verified_boundaries, SlotMap};
 use super::Sections;
 use crate::corner_table::NONE;
 use crate::error::{Result, Rule};
-use crate::format::layout::LrbeHeader;
+use crate::format::layout::{LrbeHeader, LR_BOUNDARIES_ON_RING};
 use crate::format::Tag;
 use crate::ids::Corner;
 use crate::lr::compact::{BLOCK_SHIFT, EXTENDED, OVERFLOW_ROW_WORDS, T0_ROW_UNITS};
-use crate::lr::{boundaries_on_ring_given, CompactTables, LrLayout, NULL};
+use crate::lr::{CompactTables, LrLayout, NULL};
 use crate::words::{LeUnits, LeWords, Units, Words};
 
-/// The `LRBE` section as tables, after checking every rule the operators rely on.
+/// The `LRBE` section as tables and the number of canonical triangles they hold, after
+/// checking the rules that keep every operator's answer in range; with `verify`, every rule
+/// (FORMAT.md §3.5d, §5.1).
 pub(super) fn lr_compact_tables<'a>(
     sections: &Sections<'a>,
     m: u32,
-) -> Result<CompactTables<LeWords<'a>, LeUnits<'a>>> {
+    verify: bool,
+) -> Result<(CompactTables<LeWords<'a>, LeUnits<'a>>, u64)> {
     let f = Fields::new(sections.required(Tag::LRBE)?);
     let b = f.bytes();
     // [V33] counts and length.
@@ -32,8 +35,8 @@ pub(super) fn lr_compact_tables<'a>(
             format!("{} vertices, section MESH says {m}", h.m),
         ));
     }
-    if h.reserved != 0 {
-        return Err(f.err(28, Rule(33), "reserved field is not zero"));
+    if h.flags & !LR_BOUNDARIES_ON_RING != 0 {
+        return Err(f.err(28, Rule(33), "unknown flag bits are set"));
     }
     if m >= NULL {
         return Err(f.err(
@@ -244,15 +247,44 @@ pub(super) fn lr_compact_tables<'a>(
         ));
     }
 
-    // [V37] the LR rules every layout keeps (V19, V21–V23), and C holds corners.
+    // [V37] C, the opposites that records store and the overflow rows' opposites hold
+    // corners; then the LR rules every layout keeps (V19; V21–V23 and V38 when verifying).
+    let slots = SlotMap::new(&tables);
+    let corner_ok = |x: u32| x == NONE || slots.is_corner(x);
     for i in 0..(m - m_r) as usize {
         let x = tables.isolated_corner(i as u32);
-        if x != NONE && !tables.is_corner(Corner(x)) {
+        if !corner_ok(x) {
             return Err(word_err(
                 6,
                 i,
                 Rule(37),
                 format!("{x} is not a corner of the mesh"),
+            ));
+        }
+    }
+    for v in (0..m_r).filter(|&v| pairs.at(v as usize) >> 30 == EXTENDED) {
+        for (side, second) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+            if let Some(x) = tables
+                .stored_opposite(v, side, second)
+                .filter(|&x| !corner_ok(x))
+            {
+                return Err(word_err(
+                    3,
+                    v as usize,
+                    Rule(37),
+                    format!("pair {v}: its record stores opposite {x}, not a corner of the mesh"),
+                ));
+            }
+        }
+    }
+    for i in 0..overflow.count() {
+        let x = overflow.at(i);
+        if i % OVERFLOW_ROW_WORDS >= 3 && !corner_ok(x) {
+            return Err(word_err(
+                7,
+                i,
+                Rule(37),
+                format!("overflow opposite {x} is not a corner of the mesh"),
             ));
         }
     }
@@ -270,10 +302,14 @@ pub(super) fn lr_compact_tables<'a>(
             starts[6] + 4 * (v - m_r) as usize
         }
     };
-    let without_opposite = check_lr_opposites(&tables, &f, corner_at)?;
-    tables.boundaries_on_ring = boundaries_on_ring_given(&tables, without_opposite);
-    check_vertex_corners(&tables, Rule(23), |v, rule, message| {
-        f.err(vertex_at(v), rule, message)
-    })?;
-    Ok(tables)
+    slots.check_jumps(&tables, &f, corner_at)?;
+    let flag = h.flags & LR_BOUNDARIES_ON_RING != 0;
+    tables.boundaries_on_ring = flag;
+    if verify {
+        tables.boundaries_on_ring = verified_boundaries(&tables, &f, corner_at, flag, 28)?;
+        check_vertex_corners(&tables, Rule(23), |v, rule, message| {
+            f.err(vertex_at(v), rule, message)
+        })?;
+    }
+    Ok((tables, slots.triangles + n0 as u64))
 }

@@ -6,7 +6,7 @@
 use super::fields::Fields;
 use crate::error::{Error, Result, Rule};
 use crate::ids::{Corner, Vertex};
-use crate::lr::LrLayout;
+use crate::lr::{LrLayout, NULL};
 use crate::ops::CornerOps;
 use crate::words::Words;
 
@@ -70,10 +70,107 @@ pub(super) fn check_rings<W: Words>(
     Ok(())
 }
 
-/// [V19], [V21] and [V22] for any LR layout. `corner_at` gives the section offset that
-/// stores a corner's triangle, for errors. Returns the number of corners without an
-/// opposite, from which the reader tells whether the boundaries run along the ring before it
-/// checks the vertex corners ([`check_vertex_corners`]).
+/// What one pass over the ring slots of any LR layout finds: which slots hold a canonical
+/// triangle and which jump to the same side of `v.n` (redundant T2 copies and wart slots),
+/// one bit per slot. [V19] and the corner checks of [V20] and [V37] then look bits up
+/// instead of decoding slots again at random.
+pub(super) struct SlotMap {
+    canonical: Vec<u64>,
+    jumps: Vec<u64>,
+    /// Canonical triangles in ring slots.
+    pub triangles: u64,
+    m_r: u32,
+    t0: u32,
+}
+
+#[inline(always)]
+fn bit(bits: &[u64], i: usize) -> bool {
+    bits[i / 64] >> (i % 64) & 1 != 0
+}
+
+impl SlotMap {
+    /// One pass over the slots, ring by ring (rings checked by [V16] first).
+    pub(super) fn new<T: LrLayout>(tables: &T) -> SlotMap {
+        let m_r = tables.ring_vertices();
+        let words = (2 * m_r as usize).div_ceil(64);
+        let (mut canonical, mut jumps) = (vec![0u64; words], vec![0u64; words]);
+        let mut triangles = 0u64;
+        for ring in 0..tables.ring_count() {
+            let (start, end) = (tables.ring_start(ring), tables.ring_start(ring + 1));
+            let after = |v: u32| if v + 1 == end { start } else { v + 1 };
+            for v in start..end {
+                let nn = after(after(v));
+                for side in [0, 1] {
+                    let tip = tables.tip(v, side);
+                    let wart = tables.wart(v, side);
+                    let redundant = !wart && !tables.irregular(v, side) && tip == nn;
+                    let t = 2 * v as usize + side;
+                    if tip != NULL && !redundant {
+                        canonical[t / 64] |= 1 << (t % 64);
+                        triangles += 1;
+                    }
+                    if redundant || wart {
+                        jumps[t / 64] |= 1 << (t % 64);
+                    }
+                }
+            }
+        }
+        SlotMap {
+            canonical,
+            jumps,
+            triangles,
+            m_r,
+            t0: tables.t0_count(),
+        }
+    }
+
+    /// Whether `c` is a corner of a canonical triangle ([`LrLayout::is_corner`]).
+    #[inline]
+    pub(super) fn is_corner(&self, c: u32) -> bool {
+        let t = (c >> 2) as usize;
+        c & 3 != 3
+            && if t < 2 * self.m_r as usize {
+                bit(&self.canonical, t)
+            } else {
+                t - 2 * (self.m_r as usize) < self.t0 as usize
+            }
+    }
+
+    /// [V19]: every slot that jumps lands on a canonical triangle, so that every corner an
+    /// operator computes is a corner of the mesh. `corner_at` gives the section offset that
+    /// stores a corner's triangle, for errors.
+    pub(super) fn check_jumps<T: LrLayout>(
+        &self,
+        tables: &T,
+        f: &Fields,
+        corner_at: impl Fn(Corner) -> usize,
+    ) -> Result<()> {
+        for (i, &word) in self.jumps.iter().enumerate() {
+            let mut w = word;
+            while w != 0 {
+                let slot = 64 * i + w.trailing_zeros() as usize;
+                w &= w - 1;
+                let (v, side) = ((slot / 2) as u32, slot % 2);
+                let target = 2 * tables.ring_next(v) as usize + side;
+                if !bit(&self.canonical, target) {
+                    return Err(f.err(
+                        corner_at(Corner(8 * v + 4 * side as u32)),
+                        Rule(19),
+                        format!(
+                            "slot {slot} points to slot {target} which holds no canonical triangle"
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// [V21] and [V22] for any LR layout (a verifying reader's rules). `corner_at` gives the
+/// section offset that stores a corner's triangle, for errors. Returns the number of corners
+/// without an opposite, from which the reader tells whether the boundaries run along the ring
+/// before it checks the vertex corners ([`check_vertex_corners`]).
 pub(super) fn check_lr_opposites<T: LrLayout>(
     tables: &T,
     f: &Fields,
@@ -81,21 +178,6 @@ pub(super) fn check_lr_opposites<T: LrLayout>(
 ) -> Result<usize> {
     let mut without_opposite = 0;
     let corner_err = |c: Corner, rule: Rule, message: String| f.err(corner_at(c), rule, message);
-    for slot in 0..2 * tables.ring_vertices() as usize {
-        let (v, side) = ((slot / 2) as u32, slot % 2);
-        if (tables.redundant(v, side) || tables.wart(v, side))
-            && !tables.slot_is_triangle(tables.ring_next(v), side)
-        {
-            return Err(corner_err(
-                Corner(8 * v + 4 * side as u32),
-                Rule(19),
-                format!(
-                    "slot {slot} points to slot {} which holds no canonical triangle",
-                    2 * tables.ring_next(v) as usize + side
-                ),
-            ));
-        }
-    }
     // c.o is an involution across the same edge: checked at every corner that has one, so
     // that an error names the corner whose opposite does not point back.
     for t in tables.triangles() {
@@ -133,6 +215,28 @@ pub(super) fn check_lr_opposites<T: LrLayout>(
         }
     }
     Ok(without_opposite)
+}
+
+/// [V21], [V22] and [V53] for a verifying reader: returns whether every boundary runs along
+/// the ring, derived from the tables, after checking that the header's flag (`flag`, stored
+/// at section offset `flag_at`) claims it only when it holds.
+pub(super) fn verified_boundaries<T: LrLayout>(
+    tables: &T,
+    f: &Fields,
+    corner_at: impl Fn(Corner) -> usize,
+    flag: bool,
+    flag_at: usize,
+) -> Result<bool> {
+    let without_opposite = check_lr_opposites(tables, f, corner_at)?;
+    let on_ring = crate::lr::boundaries_on_ring_given(tables, without_opposite);
+    if flag && !on_ring {
+        return Err(f.err(
+            flag_at,
+            Rule(53),
+            "the flags say every boundary runs along the ring, but a corner off the ring has no opposite",
+        ));
+    }
+    Ok(on_ring)
 }
 
 /// [V23] (strips: [V32]) `v.c.v = v` and [V38] `v.c` is `NONE` exactly for a vertex no triangle uses, and

@@ -11,11 +11,19 @@
 //! - `decode`: the container back to a [`Mesh`](crate::Mesh);
 //! - [`summary`]: what `lrmesh info` reports.
 //!
-//! [`open`] checks every index and invariant the operators rely on, so that afterwards no
-//! operator of the view can panic on a corner of the mesh, read out of bounds, return an id
-//! that is not the mesh's, or loop forever. Nothing is allocated beyond a bound of the
-//! input's length: the view borrows its tables, and the per-vertex marks that validation
-//! needs are bounded by counts already checked against the bytes present.
+//! Two levels of checking (`spec/FORMAT.md` §5.1), as robust readers have:
+//!
+//! - [`open`] checks that the file is well formed (header, section table, checksums, counts,
+//!   every stored id and offset in range, the slots the operators jump to) in one pass, so
+//!   that afterwards no operator of the view can panic on a corner of the mesh, read out of
+//!   bounds or answer an id out of range, and every walk ends;
+//! - [`open_verified`] (or [`Container::verify`] later) also checks the semantic rules, so
+//!   that the answers are the mesh's: opposites face each other, vertex corners start their
+//!   fans, walks stay within a fan.
+//!
+//! Nothing is allocated beyond a bound of the input's length: the view borrows its tables,
+//! and the per-vertex marks that validation needs are bounded by counts already checked
+//! against the bytes present.
 
 pub mod attributes;
 mod counts;
@@ -40,6 +48,21 @@ pub use summary::{ContainerSummary, SectionSummary};
 pub use view::{Connectivity, Container};
 
 use crate::error::Result;
+
+/// The rules that [`open`] leaves, wholly or in part, to [`open_verified`] (FORMAT.md §5.1): whether opposites
+/// face each other, fans start where `v.c` says, the LR flags hold and the decoded values of
+/// blocked positions are in range. A file that breaks only these still answers every
+/// operator with an id in range.
+pub const SEMANTIC_RULES: [crate::Rule; 8] = [
+    crate::Rule(21),
+    crate::Rule(22),
+    crate::Rule(23),
+    crate::Rule(31),
+    crate::Rule(32),
+    crate::Rule(38),
+    crate::Rule(45),
+    crate::Rule(53),
+];
 
 /// Limits on what a reader accepts, beyond what the file's length bounds anyway. One value
 /// reaches every decoder, Edgebreaker's included.
@@ -67,7 +90,10 @@ impl Default for Limits {
     }
 }
 
-/// Parses and fully validates a container.
+/// Parses a container and checks that it is well formed (FORMAT.md §5.1: every rule but the
+/// semantic ones), at close to the speed of reading its bytes. Every operator of the view
+/// answers ids in range and every walk ends; on a file that breaks a semantic rule the
+/// answers are unspecified. [`open_verified`] checks every rule.
 ///
 /// # Errors
 /// [`Error::Format`](crate::Error::Format) naming the section, byte offset and rule of
@@ -75,5 +101,14 @@ impl Default for Limits {
 /// [`Error::UnknownRequiredSection`](crate::Error::UnknownRequiredSection);
 /// [`Error::LimitExceeded`](crate::Error::LimitExceeded).
 pub fn open<'a>(bytes: &'a [u8], limits: &Limits) -> Result<Container<'a>> {
-    Container::new(Sections::parse(bytes, limits)?, limits)
+    Container::new(Sections::parse(bytes, limits)?, limits, false)
+}
+
+/// Parses a container and checks every rule of FORMAT.md, the semantic ones included: the
+/// operators' answers are the mesh's.
+///
+/// # Errors
+/// As [`open`], and the semantic rules' [`Error::Format`](crate::Error::Format).
+pub fn open_verified<'a>(bytes: &'a [u8], limits: &Limits) -> Result<Container<'a>> {
+    Container::new(Sections::parse(bytes, limits)?, limits, true)
 }

@@ -74,6 +74,7 @@ impl Positions<'_> {
 pub(super) fn positions<'a>(
     sections: &Sections<'a>,
     m: u32,
+    verify: bool,
 ) -> Result<(PositionEncoding, Option<Positions<'a>>)> {
     let f = Fields::new(sections.required(Tag::GEOM)?);
     let rule = Rule(13);
@@ -106,7 +107,7 @@ pub(super) fn positions<'a>(
         }
         PositionEncoding::PREDICTED_GRID | PositionEncoding::PREDICTED_F32 => None,
         PositionEncoding::BLOCKED | PositionEncoding::BLOCKED_F32 => {
-            Some(Positions::Blocked(BlockedView::parse(&f, m)?))
+            Some(Positions::Blocked(BlockedView::parse(&f, m, verify)?))
         }
         other => {
             return Err(f.err(0, rule, format!("unknown position encoding {}", other.0)));

@@ -22,8 +22,13 @@ enum Array {
     C,
 }
 
-/// The `STRP` section as tables, after checking every rule the operators rely on.
-pub(super) fn strips_tables<'a>(sections: &Sections<'a>, m: u32) -> Result<CtsTables<LeWords<'a>>> {
+/// The `STRP` section as tables, after checking the rules that keep every operator's answer
+/// in range; with `verify`, every rule (FORMAT.md §3.5c, §5.1).
+pub(super) fn strips_tables<'a>(
+    sections: &Sections<'a>,
+    m: u32,
+    verify: bool,
+) -> Result<CtsTables<LeWords<'a>>> {
     let f = Fields::new(sections.required(Tag::STRP)?);
     let b = f.bytes();
     // [V28] counts and length.
@@ -186,6 +191,33 @@ pub(super) fn strips_tables<'a>(sections: &Sections<'a>, m: u32) -> Result<CtsTa
         }
     }
 
+    // [V32] C holds corners of the mesh; then C[v] is a corner of v ([V32]), NONE exactly
+    // for an unused vertex and the start of an open fan ([V38]).
+    for i in 0..c.count() {
+        let x = c.at(i);
+        if x != NONE && !tables.is_corner(Corner(x)) {
+            return Err(err(
+                Array::C,
+                i,
+                Rule(32),
+                format!("{x:#x} is not a corner of the mesh"),
+            ));
+        }
+    }
+    if verify {
+        check_opposites(&tables, &err)?;
+        check_vertex_corners(&tables, Rule(32), |v, rule, message| {
+            err(Array::C, v as usize, rule, message)
+        })?;
+    }
+    Ok(tables)
+}
+
+/// [V31] (a verifying reader's rule).
+fn check_opposites(
+    tables: &CtsTables<LeWords<'_>>,
+    err: &impl Fn(Array, usize, Rule, String) -> Error,
+) -> Result<()> {
     // [V31] c.o is an involution across one edge, reversed: checked at every corner that has
     // one, so that an error names the corner whose opposite does not point back.
     for tri in tables.triangles() {
@@ -214,21 +246,5 @@ pub(super) fn strips_tables<'a>(sections: &Sections<'a>, m: u32) -> Result<CtsTa
         }
     }
 
-    // [V32] C holds corners of the mesh; then C[v] is a corner of v ([V32]), NONE exactly
-    // for an unused vertex and the start of an open fan ([V38]).
-    for i in 0..c.count() {
-        let x = c.at(i);
-        if x != NONE && !tables.is_corner(Corner(x)) {
-            return Err(err(
-                Array::C,
-                i,
-                Rule(32),
-                format!("{x:#x} is not a corner of the mesh"),
-            ));
-        }
-    }
-    check_vertex_corners(&tables, Rule(32), |v, rule, message| {
-        err(Array::C, v as usize, rule, message)
-    })?;
-    Ok(tables)
+    Ok(())
 }

@@ -134,12 +134,15 @@ impl CornerOps for Connectivity<'_> {
     }
 }
 
-/// A validated container: the tables borrowed from the buffer, the connectivity answering
-/// the corner operators in place. Made by [`crate::open`] or [`super::open`].
+/// A container whose tables are borrowed from the buffer, the connectivity answering the
+/// corner operators in place. Made by [`super::open`] (the file is well formed: every answer
+/// is in range) or [`super::open_verified`] (every rule holds: the answers are the mesh's).
 #[derive(Debug, Clone)]
 pub struct Container<'a> {
     /// The container's sections.
     pub sections: Sections<'a>,
+    /// Whether every rule was checked ([`super::open_verified`] or [`Container::verify`]).
+    verified: bool,
     /// The metadata, if the file has a `META` section.
     pub metadata: Option<Metadata>,
     pub(super) connectivity: Connectivity<'a>,
@@ -159,22 +162,69 @@ pub struct Container<'a> {
 }
 
 impl<'a> Container<'a> {
-    /// Validates the sections' contents (every rule after V10).
-    pub(super) fn new(sections: Sections<'a>, limits: &Limits) -> Result<Container<'a>> {
+    /// Checks the sections' contents: every rule after V10 but the semantic ones
+    /// (FORMAT.md §5.1), then with `verify` the semantic ones, so that both levels report the
+    /// same first error on a file that is not well formed.
+    pub(super) fn new(
+        sections: Sections<'a>,
+        limits: &Limits,
+        verify: bool,
+    ) -> Result<Container<'a>> {
+        let mut container = Container::well_formed(sections, limits)?;
+        if verify {
+            container.check_semantic_rules()?;
+        }
+        Ok(container)
+    }
+
+    /// The semantic rules, on a well-formed container: the decoded values of blocked
+    /// positions, then the connectivity's (its tables read again with every rule, which
+    /// also derives the LR boundary flag from them).
+    fn check_semantic_rules(&mut self) -> Result<()> {
+        let m = self.vertices;
+        if let Positions::Blocked(_) = self.positions {
+            positions::positions(&self.sections, m, true)?;
+        }
+        match &mut self.connectivity {
+            Connectivity::Lr(t) => *t = lr::lr_tables(&self.sections, m, true)?.0,
+            Connectivity::LrCompact(t) => {
+                *t = lr_compact::lr_compact_tables(&self.sections, m, true)?.0
+            }
+            Connectivity::Strips(t) => *t = strips::strips_tables(&self.sections, m, true)?,
+            // Decoded whole when opened: the decoder checks everything it builds.
+            Connectivity::Edgebreaker(_) => {}
+        }
+        self.verified = true;
+        Ok(())
+    }
+
+    /// Every rule after V10 but the semantic ones.
+    fn well_formed(sections: Sections<'a>, limits: &Limits) -> Result<Container<'a>> {
         let metadata = counts::metadata(&sections, limits)?;
         let (mesh, mesh_fields) = counts::mesh_record(&sections)?;
         let m = mesh.vertices;
-        let (encoding, stored) = positions::positions(&sections, m)?;
+        let (encoding, stored) = positions::positions(&sections, m, false)?;
         let legacy = counts::attributes(&sections, m)?;
-        let connectivity = match mesh.kind {
-            Kind::LR => Connectivity::Lr(lr::lr_tables(&sections, m)?),
-            Kind::STRIPS => Connectivity::Strips(strips::strips_tables(&sections, m)?),
-            Kind::LR_COMPACT => {
-                Connectivity::LrCompact(lr_compact::lr_compact_tables(&sections, m)?)
+        let (connectivity, held) = match mesh.kind {
+            Kind::LR => {
+                let (tables, held) = lr::lr_tables(&sections, m, false)?;
+                (Connectivity::Lr(tables), held)
             }
-            _ => Connectivity::Edgebreaker(Box::new(edgebreaker::edgebreaker_table(
-                &sections, m, limits,
-            )?)),
+            Kind::STRIPS => {
+                let tables = strips::strips_tables(&sections, m, false)?;
+                let held = tables.triangle_count() as u64;
+                (Connectivity::Strips(tables), held)
+            }
+            Kind::LR_COMPACT => {
+                let (tables, held) = lr_compact::lr_compact_tables(&sections, m, false)?;
+                (Connectivity::LrCompact(tables), held)
+            }
+            _ => {
+                // Decoded whole: the decoder checks everything it builds.
+                let table = edgebreaker::edgebreaker_table(&sections, m, limits)?;
+                let held = table.triangle_id_bound() as u64;
+                (Connectivity::Edgebreaker(Box::new(table)), held)
+            }
         };
         let positions = match stored {
             Some(p) => p,
@@ -186,7 +236,6 @@ impl<'a> Container<'a> {
                 positions::decode(&sections, encoding, table)?
             }
         };
-        let held = connectivity.triangle_count();
         if held != mesh.triangles as u64 {
             return Err(mesh_fields.err(
                 8,
@@ -237,6 +286,7 @@ impl<'a> Container<'a> {
         let parts = parts::parts(&sections, &cx)?;
         Ok(Container {
             sections,
+            verified: false,
             metadata,
             connectivity,
             vertices: m,
@@ -249,6 +299,25 @@ impl<'a> Container<'a> {
             output_vertices: mesh.output_vertices,
             triangles: mesh.triangles,
         })
+    }
+
+    /// Checks the rules that [`super::open`] leaves out (FORMAT.md §5.1: opposites that face
+    /// each other, vertex corners that start their fans, the LR flags), so that the
+    /// operators' answers are the mesh's and every walk ends within its fan. Does nothing on
+    /// a container opened with [`super::open_verified`].
+    ///
+    /// # Errors
+    /// As [`super::open_verified`].
+    pub fn verify(&mut self) -> Result<()> {
+        if !self.verified {
+            self.check_semantic_rules()?;
+        }
+        Ok(())
+    }
+
+    /// Whether every rule has been checked ([`super::open_verified`], [`Container::verify`]).
+    pub fn is_verified(&self) -> bool {
+        self.verified
     }
 
     /// The connectivity, answering the corner operators for every kind.

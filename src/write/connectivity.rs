@@ -4,7 +4,9 @@
 use crate::corner_table::CornerTable;
 use crate::edgebreaker;
 use crate::error::Result;
-use crate::format::layout::{write_fields, Layout, LrbeHeader, LrtbHeader, StrpHeader};
+use crate::format::layout::{
+    write_fields, Layout, LrbeHeader, LrtbHeader, StrpHeader, LR_BOUNDARIES_ON_RING,
+};
 use crate::format::{Kind, Tag};
 use crate::ids::{Triangle, Vertex};
 use crate::lr::{CompactLr, Lr, LrLayout};
@@ -79,6 +81,15 @@ fn write_arrays(out: &mut Vec<u8>, layout: &Layout, words: &[&[u32]], units: &[&
     debug_assert_eq!(out.len() as u64, layout.len);
 }
 
+/// The header flags of built LR tables of either layout.
+fn boundary_flag<T: LrLayout>(tables: &T) -> u32 {
+    if tables.boundaries_on_ring() {
+        LR_BOUNDARIES_ON_RING
+    } else {
+        0
+    }
+}
+
 /// The `LRTB` section of a built LR.
 pub(super) fn lr_section(lr: &Lr) -> Encoded {
     let t = lr.tables();
@@ -88,7 +99,8 @@ pub(super) fn lr_section(lr: &Lr) -> Encoded {
         rings: t.ring_count() as u32,
         t0: t.t0_count(),
         records: t.record_count(),
-        reserved: [0; 3],
+        flags: boundary_flag(t),
+        reserved: [0; 2],
     };
     let layout = header.layout().expect("a built LR fits its layout");
     let mut p = header.to_bytes();
@@ -165,7 +177,7 @@ pub(crate) fn lr_compact_header(lr: &CompactLr) -> LrbeHeader {
         record_units: t.record_units(),
         overflow_rows: t.overflow_rows(),
         period: lr.period(),
-        reserved: 0,
+        flags: boundary_flag(t),
     }
 }
 

@@ -19,7 +19,7 @@ use super::sections_of;
 use lrmesh::format::layout::{Layout, LrbeHeader, LrtbHeader, StrpHeader};
 use lrmesh::format::{table_checksum, Tag};
 use lrmesh::lr::LrLayout;
-use lrmesh::read::{open, Limits, Sections};
+use lrmesh::read::{open, open_verified, Limits, Sections, SEMANTIC_RULES};
 use lrmesh::write::{assemble, encode, Connectivity, EncodeOptions};
 use lrmesh::{Corner, CornerOps, Error, FormatError, Mesh, Rule};
 
@@ -120,13 +120,28 @@ pub fn entry_at(i: usize, field: u64) -> u64 {
     32 + 32 * i as u64 + field
 }
 
+/// The error by which [`open_verified`] refuses `bytes`. The well-formed check ([`open`])
+/// must refuse them with the same error, unless the rule is one it leaves to the verifying
+/// reader: then the file opens and every operator answers in range.
 #[track_caller]
 pub fn format_error(bytes: &[u8]) -> FormatError {
-    match open(bytes, &Limits::default()) {
+    let e = match open_verified(bytes, &Limits::default()) {
         Err(Error::Format(e)) => *e,
         Err(e) => panic!("expected a format error, got {e}"),
         Ok(_) => panic!("the forged container was accepted"),
+    };
+    match open(bytes, &Limits::default()) {
+        Err(Error::Format(quick)) => assert_eq!(*quick, e, "both levels name the same error"),
+        Err(other) => panic!("the well-formed check fails otherwise: {other}"),
+        Ok(view) => {
+            assert!(
+                SEMANTIC_RULES.contains(&e.rule),
+                "a well-formed open misses {e}"
+            );
+            lrmesh::fuzz_checks::walk_in_range(&view);
+        }
     }
+    e
 }
 
 /// The message of the error by which opening `bytes` fails, which must be rule `rule` in
@@ -134,7 +149,7 @@ pub fn format_error(bytes: &[u8]) -> FormatError {
 /// whose damaged bytes may or may not break a rule.
 #[track_caller]
 pub fn rule_message(bytes: &[u8], rule: u8, section: &str) -> Option<String> {
-    match open(bytes, &Limits::default()) {
+    match open_verified(bytes, &Limits::default()) {
         Ok(_) => None,
         Err(Error::Format(e)) => {
             assert_eq!((e.rule, e.section.as_str()), (Rule(rule), section), "{e}");

@@ -273,7 +273,7 @@ pub fn forge_fields(
     values: impl Fn(u32) -> Vec<u32>,
     mut consistent: impl FnMut(&lrmesh::read::Container),
 ) -> (usize, usize) {
-    use lrmesh::read::{open, Limits};
+    use lrmesh::read::{open, open_verified, Limits};
     let sections = sections_of(bytes);
     let index = sections.iter().position(|s| s.0 == tag).unwrap();
     let (mut rejected, mut accepted) = (0, 0);
@@ -286,8 +286,17 @@ pub fn forge_fields(
             }
             let mut forged = sections.clone();
             forged[index].2[at..at + width].copy_from_slice(&value.to_le_bytes()[..width]);
-            match open(&lrmesh::write::assemble(&forged), &Limits::default()) {
+            let forged = lrmesh::write::assemble(&forged);
+            // The well-formed check: every answer in range, or the verifier's error.
+            let quick = open(&forged, &Limits::default());
+            if let Ok(view) = &quick {
+                lrmesh::fuzz_checks::walk_in_range(view);
+            }
+            match open_verified(&forged, &Limits::default()) {
                 Err(e) => {
+                    if let Err(q) = &quick {
+                        assert_eq!(q.to_string(), e.to_string());
+                    }
                     let message = e.to_string();
                     assert!(
                         message.contains(&tag.name()) || message.contains("MESH"),

@@ -29,7 +29,8 @@ pub struct VerifyArgs {
 
 pub fn decode(args: DecodeArgs) -> lrmesh::Result<()> {
     let bytes = map(&args.input)?;
-    let view = read::open(&bytes, &Limits::default()).map_err(|e| e.with_file(&args.input))?;
+    let view =
+        read::open_verified(&bytes, &Limits::default()).map_err(|e| e.with_file(&args.input))?;
     let mesh = progress::step("decoding", || view.to_mesh());
     save(&args.output, &mesh, args.ascii)?;
     eprintln!(
@@ -48,7 +49,8 @@ pub fn decode(args: DecodeArgs) -> lrmesh::Result<()> {
 
 pub fn verify(args: VerifyArgs) -> lrmesh::Result<()> {
     let bytes = map(&args.file)?;
-    let view = read::open(&bytes, &Limits::default()).map_err(|e| e.with_file(&args.file))?;
+    let view =
+        read::open_verified(&bytes, &Limits::default()).map_err(|e| e.with_file(&args.file))?;
     let summary = view.summary();
     say!(
         "{}: valid lrmesh container {}, {} vertices, {} triangles",

@@ -121,7 +121,8 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
     let mesh = &args.mesh;
     let image = if is_container(mesh) {
         let bytes = map(mesh)?;
-        let view = read::open(&bytes, &Limits::default()).map_err(|e| e.with_file(mesh))?;
+        let view =
+            read::open_verified(&bytes, &Limits::default()).map_err(|e| e.with_file(mesh))?;
         let positions = view.positions();
         if let Some(lr) = view.lr() {
             progress::step("rendering", || render::render(lr, &positions, &options))?

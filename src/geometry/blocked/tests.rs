@@ -15,7 +15,7 @@ fn parse(bytes: &[u8], m: usize) -> Result<BlockedView<'_>> {
         offset: 0,
         bytes,
     };
-    BlockedView::parse(&Fields::new(section), m as u64)
+    BlockedView::parse(&Fields::new(section), m as u64, true)
 }
 
 /// Random points, one in eight far from the others (so that some residuals are wide).
