@@ -332,6 +332,15 @@ fn bench_json_has_one_row_per_representation() {
         );
     }
     assert!(row("LR (owned)")["memcpy_ms"].is_null());
+    // Verifying checks the semantic rules on top of the well-formed check.
+    for name in ["LR (view)", "compact LR (view)"] {
+        let (open, verify) = (
+            row(name)["open_ms"].as_f64(),
+            row(name)["verify_ms"].as_f64(),
+        );
+        assert!(verify.is_some_and(|v| v > 0.0) && open.is_some(), "{name}");
+    }
+    assert!(row("Edgebreaker")["verify_ms"].is_null());
     assert!(row("LR (owned)")["bytes"].as_f64() < row("corner table")["bytes"].as_f64());
     assert!(row("compact LR (owned)")["bytes"].as_f64() < row("LR (owned)")["bytes"].as_f64());
     assert!(row("compact LR (view)")["open_ms"].as_f64().is_some());

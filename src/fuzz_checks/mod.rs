@@ -15,6 +15,7 @@ pub use round_trip::{
     round_trip_every_kind_with,
 };
 
+use crate::format::Tag;
 use crate::io::{read_mesh_bytes, MeshFormat, ReadOptions};
 use crate::ops::{self, CornerOps, Plane};
 use crate::read::{open, open_verified, Limits};
@@ -22,7 +23,7 @@ use crate::write::{assemble, encode, Connectivity, EncodeOptions, DEFAULT_LEVEL}
 use crate::{generate, Vertex};
 
 /// The fuzz targets, by name.
-pub const TARGETS: [&str; 9] = [
+pub const TARGETS: [&str; 10] = [
     "import_obj",
     "import_off",
     "import_ply",
@@ -30,6 +31,7 @@ pub const TARGETS: [&str; 9] = [
     "import_gltf",
     "container",
     "container_forged",
+    "operators",
     "edgebreaker",
     "round_trip",
 ];
@@ -44,6 +46,7 @@ pub fn run(name: &str, data: &[u8]) {
         "import_gltf" => import_gltf(data),
         "container" => container(data),
         "container_forged" => container_forged(data),
+        "operators" => operators(data),
         "edgebreaker" => edgebreaker(data),
         "round_trip" => round_trip(data),
         other => panic!("no fuzz target {other}"),
@@ -147,6 +150,44 @@ pub fn container_forged(data: &[u8]) {
         }
         let at = u16::from_le_bytes([edit[1], edit[2]]) as usize % section.len();
         section[at] = edit[3];
+    }
+    container(&assemble(&sections));
+}
+
+/// A valid container of the LR, bit-efficient LR or strips kind ([`forged_base`], its kind
+/// from bits 0–1 of the first byte modulo 3), whose connectivity section has 16-bit units
+/// copied over others (each following 4 bytes: the unit to copy, the unit to overwrite) and
+/// its checksums recomputed. Copies of ids, offsets and corners that the file already holds
+/// stay in range far more often than random bytes do, so the files reach the operators while
+/// well formed but not valid: [`container`] then requires every answer in range, every walk
+/// to end, and the verifying reader to name a semantic rule (FORMAT.md §5.1).
+pub fn operators(data: &[u8]) {
+    let Some((&choice, edits)) = data.split_first() else {
+        return;
+    };
+    let choice = (choice & !3) | ((choice & 3) % 3);
+    let bytes = forged_base(choice);
+    let mut sections: Vec<_> = open(&bytes, &Limits::default())
+        .expect("what we write opens")
+        .sections
+        .sections
+        .iter()
+        .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
+        .collect();
+    let connectivity = [Tag::LRTB, Tag::LRBE, Tag::STRP];
+    let Some(section) = sections
+        .iter_mut()
+        .find(|s| connectivity.contains(&s.0))
+        .map(|s| &mut s.2)
+    else {
+        return;
+    };
+    let units = section.len() / 2;
+    for edit in edits.chunks_exact(4) {
+        let from = u16::from_le_bytes([edit[0], edit[1]]) as usize % units;
+        let to = u16::from_le_bytes([edit[2], edit[3]]) as usize % units;
+        let unit = [section[2 * from], section[2 * from + 1]];
+        section[2 * to..2 * to + 2].copy_from_slice(&unit);
     }
     container(&assemble(&sections));
 }

@@ -99,9 +99,15 @@ pub(super) fn lr_tables<'a>(
         boundaries_on_ring: false,
     };
 
-    // [V17] entries: values in range, NULL only as a right tip, each record used once.
+    // [V17] entries: values in range, NULL only as a right tip, each record used once. A
+    // branch-light pass first; the slot at fault is looked for only when it fails.
     let mut record_used = vec![false; records as usize];
-    for slot in 0..2 * m_r as usize {
+    let slots = if entries_hold(lr, vo_star, m, records) {
+        0
+    } else {
+        2 * m_r as usize
+    };
+    for slot in 0..slots {
         let e = lr.at(slot);
         let value = e & VALUE;
         let bad = |message: String| {
@@ -132,7 +138,7 @@ pub(super) fn lr_tables<'a>(
             return bad(format!("vertex {value} out of range ({m} vertices)"));
         }
     }
-    if let Some(i) = record_used.iter().position(|&u| !u) {
+    if let Some(i) = record_used.iter().position(|&u| slots > 0 && !u) {
         return Err(word_err(
             6,
             3 * i,
@@ -184,4 +190,27 @@ pub(super) fn lr_tables<'a>(
         })?;
     }
     Ok((tables, slots.triangles + h.t0 as u64))
+}
+
+/// [V17] in one pass without early exits: every plain entry's value below `m` or a right
+/// `NULL` without WART; exactly `ni` IRREGULAR entries whose values, all below `ni`, cover
+/// every record (so each is used once); every record's tip below `m`.
+fn entries_hold(lr: LeWords, vo_star: LeWords, m: u32, records: u32) -> bool {
+    let mut used = vec![0u64; records as usize / 64 + 1];
+    let (mut ok, mut irregular) = (true, 0u32);
+    for (slot, word) in lr.0.chunks_exact(4).enumerate() {
+        let e = u32::from_le_bytes([word[0], word[1], word[2], word[3]]);
+        let value = e & VALUE;
+        let is_irregular = e & IRREGULAR != 0;
+        let plain = value < m || (value == NULL && slot % 2 == 1 && e & WART == 0);
+        ok &= if is_irregular { value < records } else { plain };
+        irregular += is_irregular as u32;
+        if is_irregular {
+            let bit = value.min(records) as usize;
+            used[bit / 64] |= 1 << (bit % 64);
+        }
+    }
+    let all_used = (0..records as usize).all(|i| used[i / 64] >> (i % 64) & 1 != 0);
+    let tips = (0..records as usize).all(|i| vo_star.at(3 * i) < m);
+    ok && irregular == records && all_used && tips
 }

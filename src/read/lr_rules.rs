@@ -89,31 +89,28 @@ fn bit(bits: &[u64], i: usize) -> bool {
 }
 
 impl SlotMap {
-    /// One pass over the slots, ring by ring (rings checked by [V16] first).
+    /// One pass over the slots (rings checked by [V16] first), 64 slots to a word of each
+    /// bit vector, kept in registers until the word is full.
     pub(super) fn new<T: LrLayout>(tables: &T) -> SlotMap {
         let m_r = tables.ring_vertices();
-        let words = (2 * m_r as usize).div_ceil(64);
-        let (mut canonical, mut jumps) = (vec![0u64; words], vec![0u64; words]);
+        let slots = 2 * m_r as usize;
+        let words = slots.div_ceil(64);
+        let (mut canonical, mut jumps) = (Vec::with_capacity(words), Vec::with_capacity(words));
         let mut triangles = 0u64;
-        for ring in 0..tables.ring_count() {
-            let (start, end) = (tables.ring_start(ring), tables.ring_start(ring + 1));
-            let after = |v: u32| if v + 1 == end { start } else { v + 1 };
-            for v in start..end {
-                let nn = after(after(v));
-                for side in [0, 1] {
-                    let tip = tables.tip(v, side);
-                    let wart = tables.wart(v, side);
-                    let redundant = !wart && !tables.irregular(v, side) && tip == nn;
-                    let t = 2 * v as usize + side;
-                    if tip != NULL && !redundant {
-                        canonical[t / 64] |= 1 << (t % 64);
-                        triangles += 1;
-                    }
-                    if redundant || wart {
-                        jumps[t / 64] |= 1 << (t % 64);
-                    }
-                }
+        for word in 0..words {
+            let (mut c, mut j) = (0u64, 0u64);
+            for t in 64 * word..slots.min(64 * word + 64) {
+                let (v, side) = ((t / 2) as u32, t % 2);
+                let nn = tables.ring_next(tables.ring_next(v));
+                let tip = tables.tip(v, side);
+                let wart = tables.wart(v, side);
+                let redundant = !wart && !tables.irregular(v, side) && tip == nn;
+                c |= ((tip != NULL && !redundant) as u64) << (t % 64);
+                j |= ((redundant || wart) as u64) << (t % 64);
             }
+            triangles += c.count_ones() as u64;
+            canonical.push(c);
+            jumps.push(j);
         }
         SlotMap {
             canonical,
