@@ -3,7 +3,9 @@
 //! little-endian words.
 
 use super::fields::Fields;
-use super::lr_rules::{check_rings, check_vertex_corners, verified_boundaries, SlotMap};
+use super::lr_rules::{
+    check_rings, check_vertex_corners, slot_flags, verified_boundaries, SlotMap,
+};
 use super::Sections;
 use crate::corner_table::NONE;
 use crate::error::{Result, Rule};
@@ -102,11 +104,9 @@ pub(super) fn lr_tables<'a>(
     // [V17] entries: values in range, NULL only as a right tip, each record used once. A
     // branch-light pass first; the slot at fault is looked for only when it fails.
     let mut record_used = vec![false; records as usize];
-    let slots = if entries_hold(lr, vo_star, m, records) {
-        0
-    } else {
-        2 * m_r as usize
-    };
+    // With one ring, the same pass also flags the slots for [V19] and [V20].
+    let (entries_ok, one_ring_flags) = scan_entries(lr, vo_star, m, records, m_r, rings == 1);
+    let slots = if entries_ok { 0 } else { 2 * m_r as usize };
     for slot in 0..slots {
         let e = lr.at(slot);
         let value = e & VALUE;
@@ -156,7 +156,10 @@ pub(super) fn lr_tables<'a>(
         ));
     }
     // [V20] stored corners are canonical corners or NONE.
-    let slots = SlotMap::new(&tables);
+    let slots = match one_ring_flags {
+        Some(flags) => SlotMap::with_flags(flags, m_r, h.t0),
+        None => SlotMap::new(&tables),
+    };
     let corner_ok = |x: u32| x == NONE || slots.is_corner(x);
     for (array, words) in [(5, vo_o), (6, vo_star), (7, c)] {
         for i in 0..words.count() {
@@ -192,25 +195,57 @@ pub(super) fn lr_tables<'a>(
     Ok((tables, slots.triangles + h.t0 as u64))
 }
 
-/// [V17] in one pass without early exits: every plain entry's value below `m` or a right
-/// `NULL` without WART; exactly `ni` IRREGULAR entries whose values, all below `ni`, cover
-/// every record (so each is used once); every record's tip below `m`.
-fn entries_hold(lr: LeWords, vo_star: LeWords, m: u32, records: u32) -> bool {
-    let mut used = vec![0u64; records as usize / 64 + 1];
-    let (mut ok, mut irregular) = (true, 0u32);
+/// [V17] in one pass without early exits or branches: every plain entry's value below `m`
+/// or a right `NULL` without WART; exactly `ni` IRREGULAR entries whose values, all below
+/// `ni`, cover every record (so each is used once); every record's tip below `m`. With
+/// `one_ring`, also the slot flags of [`SlotMap`] (see [`one_ring_flags`]).
+fn scan_entries(
+    lr: LeWords,
+    vo_star: LeWords,
+    m: u32,
+    records: u32,
+    m_r: u32,
+    one_ring: bool,
+) -> (bool, Option<Vec<u8>>) {
+    // A byte per record, and one past them that plain entries mark.
+    let mut used = vec![0u8; records as usize + 1];
+    let (mut bad, mut irregular) = (0u32, 0u32);
     for (slot, word) in lr.0.chunks_exact(4).enumerate() {
-        let e = u32::from_le_bytes([word[0], word[1], word[2], word[3]]);
+        let e = u32::from_le_bytes(word.try_into().expect("four bytes"));
         let value = e & VALUE;
-        let is_irregular = e & IRREGULAR != 0;
-        let plain = value < m || (value == NULL && slot % 2 == 1 && e & WART == 0);
-        ok &= if is_irregular { value < records } else { plain };
-        irregular += is_irregular as u32;
-        if is_irregular {
-            let bit = value.min(records) as usize;
-            used[bit / 64] |= 1 << (bit % 64);
-        }
+        let is_irregular = e >> 31;
+        let wart = e >> 30 & 1;
+        let plain = (value < m) as u32 | ((value == NULL) as u32 & slot as u32 & (1 ^ wart));
+        let ok = (is_irregular & (value < records) as u32) | ((1 ^ is_irregular) & plain);
+        bad |= 1 ^ ok;
+        irregular += is_irregular;
+        let mark = if is_irregular != 0 {
+            value.min(records)
+        } else {
+            records
+        };
+        used[mark as usize] = 1;
     }
-    let all_used = (0..records as usize).all(|i| used[i / 64] >> (i % 64) & 1 != 0);
+    let all_used = used[..records as usize].iter().all(|&u| u == 1);
     let tips = (0..records as usize).all(|i| vo_star.at(3 * i) < m);
-    ok && irregular == records && all_used && tips
+    let ok = bad == 0 && irregular == records && all_used && tips;
+    (ok, one_ring.then(|| one_ring_flags(lr, m_r)))
+}
+
+/// The slot flags of [`SlotMap`] for entries on one ring, where `v.n.n` is `v + 2` but at
+/// the ring's end: a map over consecutive entries with bitwise rather than short-circuit
+/// logic, since the flags follow no pattern a branch predictor could learn.
+fn one_ring_flags(lr: LeWords, m_r: u32) -> Vec<u8> {
+    lr.0.chunks_exact(4)
+        .enumerate()
+        .map(|(slot, word)| {
+            let e = u32::from_le_bytes(word.try_into().expect("four bytes"));
+            let (value, is_irregular, wart) = (e & VALUE, e >> 31, e >> 30 & 1);
+            let v = (slot / 2) as u32;
+            let nn = (v + 2) - m_r * (v + 2 >= m_r) as u32;
+            let redundant = (1 ^ wart) & (1 ^ is_irregular) & (value == nn) as u32;
+            let canonical = is_irregular | ((value != NULL) as u32 & (1 ^ redundant));
+            slot_flags(canonical != 0, (redundant | wart) != 0)
+        })
+        .collect()
 }

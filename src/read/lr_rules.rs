@@ -71,53 +71,61 @@ pub(super) fn check_rings<W: Words>(
 }
 
 /// What one pass over the ring slots of any LR layout finds: which slots hold a canonical
-/// triangle and which jump to the same side of `v.n` (redundant T2 copies and wart slots),
-/// one bit per slot. [V19] and the corner checks of [V20] and [V37] then look bits up
-/// instead of decoding slots again at random.
+/// triangle ([`CANONICAL`]) and which jump to the same side of `v.n` ([`JUMPS`]: redundant T2
+/// copies and wart slots), a byte per slot so that the pass is a plain map the compiler
+/// vectorizes. [V19] and the corner checks of [V20] and [V37] then look the bytes up instead
+/// of decoding slots again at random.
 pub(super) struct SlotMap {
-    canonical: Vec<u64>,
-    jumps: Vec<u64>,
+    flags: Vec<u8>,
     /// Canonical triangles in ring slots.
     pub triangles: u64,
     m_r: u32,
     t0: u32,
 }
 
+const CANONICAL: u8 = 1;
+const JUMPS: u8 = 2;
+
+/// The flags of one slot in a [`SlotMap`]: whether it holds a canonical triangle, whether it
+/// jumps to the same side of `v.n`.
 #[inline(always)]
-fn bit(bits: &[u64], i: usize) -> bool {
-    bits[i / 64] >> (i % 64) & 1 != 0
+pub(super) fn slot_flags(canonical: bool, jumps: bool) -> u8 {
+    (canonical as u8 * CANONICAL) | (jumps as u8 * JUMPS)
+}
+
+/// The flags of slot `(v, side)` read through the layout's operators; `nn` is `v.n.n`.
+#[inline]
+pub(super) fn layout_slot_flags<T: LrLayout>(tables: &T, v: u32, side: usize, nn: u32) -> u8 {
+    // An IRREGULAR slot is never redundant, and its tip (checked below `m` by V17 or V35)
+    // is not NULL: no need to read its record.
+    let irregular = tables.irregular(v, side);
+    let wart = tables.wart(v, side);
+    let tip = if irregular { 0 } else { tables.tip(v, side) };
+    let redundant = !wart && !irregular && tip == nn;
+    slot_flags(irregular || tip != NULL && !redundant, redundant || wart)
 }
 
 impl SlotMap {
-    /// One pass over the slots (rings checked by [V16] first), 64 slots to a word of each
-    /// bit vector, kept in registers until the word is full.
+    /// One pass over the slots of any layout (rings checked by [V16] first).
     pub(super) fn new<T: LrLayout>(tables: &T) -> SlotMap {
         let m_r = tables.ring_vertices();
-        let slots = 2 * m_r as usize;
-        let words = slots.div_ceil(64);
-        let (mut canonical, mut jumps) = (Vec::with_capacity(words), Vec::with_capacity(words));
-        let mut triangles = 0u64;
-        for word in 0..words {
-            let (mut c, mut j) = (0u64, 0u64);
-            for t in 64 * word..slots.min(64 * word + 64) {
-                let (v, side) = ((t / 2) as u32, t % 2);
-                let nn = tables.ring_next(tables.ring_next(v));
-                let tip = tables.tip(v, side);
-                let wart = tables.wart(v, side);
-                let redundant = !wart && !tables.irregular(v, side) && tip == nn;
-                c |= ((tip != NULL && !redundant) as u64) << (t % 64);
-                j |= ((redundant || wart) as u64) << (t % 64);
-            }
-            triangles += c.count_ones() as u64;
-            canonical.push(c);
-            jumps.push(j);
-        }
+        let flags: Vec<u8> = (0..2 * m_r as usize)
+            .map(|t| {
+                let v = (t / 2) as u32;
+                layout_slot_flags(tables, v, t % 2, tables.ring_next(tables.ring_next(v)))
+            })
+            .collect();
+        SlotMap::with_flags(flags, m_r, tables.t0_count())
+    }
+
+    /// The map of flags made by [`slot_flags`], one per ring slot in slot order.
+    pub(super) fn with_flags(flags: Vec<u8>, m_r: u32, t0: u32) -> SlotMap {
+        let triangles = flags.iter().map(|&f| (f & CANONICAL) as u64).sum();
         SlotMap {
-            canonical,
-            jumps,
+            flags,
             triangles,
             m_r,
-            t0: tables.t0_count(),
+            t0,
         }
     }
 
@@ -126,10 +134,9 @@ impl SlotMap {
     pub(super) fn is_corner(&self, c: u32) -> bool {
         let t = (c >> 2) as usize;
         c & 3 != 3
-            && if t < 2 * self.m_r as usize {
-                bit(&self.canonical, t)
-            } else {
-                t - 2 * (self.m_r as usize) < self.t0 as usize
+            && match self.flags.get(t) {
+                Some(&f) => f & CANONICAL != 0,
+                None => t - 2 * (self.m_r as usize) < self.t0 as usize,
             }
     }
 
@@ -142,22 +149,33 @@ impl SlotMap {
         f: &Fields,
         corner_at: impl Fn(Corner) -> usize,
     ) -> Result<()> {
-        for (i, &word) in self.jumps.iter().enumerate() {
-            let mut w = word;
-            while w != 0 {
-                let slot = 64 * i + w.trailing_zeros() as usize;
-                w &= w - 1;
-                let (v, side) = ((slot / 2) as u32, slot % 2);
-                let target = 2 * tables.ring_next(v) as usize + side;
-                if !bit(&self.canonical, target) {
-                    return Err(f.err(
-                        corner_at(Corner(8 * v + 4 * side as u32)),
-                        Rule(19),
-                        format!(
-                            "slot {slot} points to slot {target} which holds no canonical triangle"
-                        ),
-                    ));
-                }
+        let n = self.flags.len();
+        if tables.ring_count() == 1 && n >= 2 {
+            // One ring: slot `t` jumps to slot `t + 2` (mod 2 m_r). A branch-free pass; the
+            // slot at fault is looked for only when it fails.
+            let lands = |(&x, &y): (&u8, &u8)| x & JUMPS == 0 || y & CANONICAL != 0;
+            let tail = self.flags[n - 2..].iter().zip(&self.flags[..2]);
+            let all = self.flags.iter().zip(&self.flags[2..]).chain(tail);
+            if all.fold(true, |ok, pair| ok & lands(pair)) {
+                return Ok(());
+            }
+        }
+        for (slot, _) in self
+            .flags
+            .iter()
+            .enumerate()
+            .filter(|(_, &x)| x & JUMPS != 0)
+        {
+            let (v, side) = ((slot / 2) as u32, slot % 2);
+            let target = 2 * tables.ring_next(v) as usize + side;
+            if self.flags[target] & CANONICAL == 0 {
+                return Err(f.err(
+                    corner_at(Corner(8 * v + 4 * side as u32)),
+                    Rule(19),
+                    format!(
+                        "slot {slot} points to slot {target} which holds no canonical triangle"
+                    ),
+                ));
             }
         }
         Ok(())

@@ -136,6 +136,22 @@ impl<W: Words, U: Units> CompactTables<W, U> {
     }
 
     /// The first unit of the record of extended pair `v` with pair word `p`.
+    /// The tips and WART flags of both slots of pair word `p` of ring vertex `v`, when the
+    /// pair is not extended (no record to read): the readers' fast path over the pairs.
+    #[inline(always)]
+    pub(crate) fn plain_slots(v: u32, p: u32) -> Option<[(u32, bool); 2]> {
+        let config = p >> 30;
+        (config != EXTENDED).then(|| {
+            [LEFT, RIGHT].map(|side| {
+                let tip = match short15(p >> (15 * side)) {
+                    0 => NULL,
+                    d => v.wrapping_add_signed(d),
+                };
+                (tip, config == WART_LEFT + side as u32)
+            })
+        })
+    }
+
     #[inline(always)]
     pub(crate) fn record_start(&self, v: u32, p: u32) -> usize {
         let block = (v >> BLOCK_SHIFT) as usize;
@@ -150,6 +166,25 @@ impl<W: Words, U: Units> CompactTables<W, U> {
         [LEFT, RIGHT]
             .iter()
             .all(|&side| (head >> (2 * side) & 3 != 0) == (p & X_IRREGULAR[side] != 0))
+    }
+
+    /// The opposites that the record of extended pair `v` stores, at the positions of
+    /// [`LrLayout::stored_opposite`] (`2 side + second`), read in one walk over the record
+    /// (the corner checks of a reader; the operators read one field).
+    pub(crate) fn stored_opposites(&self, v: u32) -> [Option<u32>; 4] {
+        let p = self.pair(v);
+        let r = self.record(v, p);
+        let t0_reference = self.blocks.at(2 * (v >> BLOCK_SHIFT) as usize + 1);
+        let mut at = r.opposites;
+        let mut out = [None; 4];
+        for (q, x) in out.iter_mut().enumerate() {
+            if r.head >> q & 1 != 0 {
+                let unit = self.records.at(at);
+                *x = Some(self.corner_field(unit, v, t0_reference, || self.long_at(at + 1)));
+                at += corner_width(unit);
+            }
+        }
+        out
     }
 
     /// The units of the record of extended pair `v`, or `None` when they run past the
