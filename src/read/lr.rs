@@ -198,7 +198,9 @@ pub(super) fn lr_tables<'a>(
 /// [V17] in one pass without early exits or branches: every plain entry's value below `m`
 /// or a right `NULL` without WART; exactly `ni` IRREGULAR entries whose values, all below
 /// `ni`, cover every record (so each is used once); every record's tip below `m`. With
-/// `one_ring`, also the slot flags of [`SlotMap`] (see [`one_ring_flags`]).
+/// `one_ring`, the same pass gives the slot flags of [`SlotMap`]: on one ring `v.n.n` is
+/// `v + 2` but at the ring's end. Bitwise rather than short-circuit logic, since the flags
+/// follow no pattern a branch predictor could learn.
 fn scan_entries(
     lr: LeWords,
     vo_star: LeWords,
@@ -210,8 +212,7 @@ fn scan_entries(
     // A byte per record, and one past them that plain entries mark.
     let mut used = vec![0u8; records as usize + 1];
     let (mut bad, mut irregular) = (0u32, 0u32);
-    for (slot, word) in lr.0.chunks_exact(4).enumerate() {
-        let e = u32::from_le_bytes(word.try_into().expect("four bytes"));
+    let mut check = |slot: usize, e: u32| {
         let value = e & VALUE;
         let is_irregular = e >> 31;
         let wart = e >> 30 & 1;
@@ -225,27 +226,30 @@ fn scan_entries(
             records
         };
         used[mark as usize] = 1;
-    }
-    let all_used = used[..records as usize].iter().all(|&u| u == 1);
-    let tips = (0..records as usize).all(|i| vo_star.at(3 * i) < m);
-    let ok = bad == 0 && irregular == records && all_used && tips;
-    (ok, one_ring.then(|| one_ring_flags(lr, m_r)))
-}
-
-/// The slot flags of [`SlotMap`] for entries on one ring, where `v.n.n` is `v + 2` but at
-/// the ring's end: a map over consecutive entries with bitwise rather than short-circuit
-/// logic, since the flags follow no pattern a branch predictor could learn.
-fn one_ring_flags(lr: LeWords, m_r: u32) -> Vec<u8> {
-    lr.0.chunks_exact(4)
-        .enumerate()
-        .map(|(slot, word)| {
-            let e = u32::from_le_bytes(word.try_into().expect("four bytes"));
-            let (value, is_irregular, wart) = (e & VALUE, e >> 31, e >> 30 & 1);
+        (value, is_irregular, wart)
+    };
+    let words =
+        lr.0.chunks_exact(4)
+            .map(|w| u32::from_le_bytes(w.try_into().expect("four bytes")));
+    let flags = if one_ring {
+        let mut flags = vec![0u8; lr.count()];
+        for ((slot, e), flag) in words.enumerate().zip(&mut flags) {
+            let (value, is_irregular, wart) = check(slot, e);
             let v = (slot / 2) as u32;
             let nn = (v + 2) - m_r * (v + 2 >= m_r) as u32;
             let redundant = (1 ^ wart) & (1 ^ is_irregular) & (value == nn) as u32;
             let canonical = is_irregular | ((value != NULL) as u32 & (1 ^ redundant));
-            slot_flags(canonical != 0, (redundant | wart) != 0)
-        })
-        .collect()
+            *flag = slot_flags(canonical != 0, (redundant | wart) != 0);
+        }
+        Some(flags)
+    } else {
+        for (slot, e) in words.enumerate() {
+            check(slot, e);
+        }
+        None
+    };
+    let all_used = used[..records as usize].iter().all(|&u| u == 1);
+    let tips = (0..records as usize).all(|i| vo_star.at(3 * i) < m);
+    let ok = bad == 0 && irregular == records && all_used && tips;
+    (ok, flags)
 }
