@@ -3,9 +3,8 @@
 //! place as [`CompactTables`] over the buffer's little-endian words and units.
 
 use super::fields::Fields;
-use super::lr_rules::{
-    check_rings, check_vertex_corners, layout_slot_flags, slot_flags, verified_boundaries, SlotMap,
-};
+use super::lr_compact_scan::{scan_pairs, stored_opposites};
+use super::lr_rules::{check_rings, check_vertex_corners, verified_boundaries, SlotMap};
 use super::Sections;
 use crate::corner_table::NONE;
 use crate::error::{Result, Rule};
@@ -100,8 +99,11 @@ pub(super) fn lr_compact_tables<'a>(
 
     // [V35] pairs and records: records tile the record units in ring order, each block's
     // first record where the block says, every field inside its record; tips in range.
+    // A fast pass first; the pair at fault is looked for only when it fails. With one ring
+    // it also flags the slots for [V19] and [V37].
+    let scan = scan_pairs(&tables, m, rings == 1);
     let mut next_record = 0usize;
-    for v in 0..m_r {
+    for v in (0..m_r).filter(|_| !scan.pairs_hold) {
         let p = pairs.at(v as usize);
         let block = (v >> BLOCK_SHIFT) as usize;
         if v % (1 << BLOCK_SHIFT) == 0 && blocks.at(2 * block) as usize != next_record {
@@ -146,14 +148,6 @@ pub(super) fn lr_compact_tables<'a>(
             }
             next_record += len;
         }
-        // Plain pairs (most) without decoding through the operators.
-        if let Some(slots) = CompactTables::<LeWords, LeUnits>::plain_slots(v, p) {
-            let fits =
-                |(tip, wart): (u32, bool), side| tip < m || (tip == NULL && side == 1 && !wart);
-            if fits(slots[0], 0) & fits(slots[1], 1) {
-                continue;
-            }
-        }
         for side in [0, 1] {
             let tip = tables.tip(v, side);
             let ok = tip < m || (tip == NULL && side == 1 && !tables.wart(v, side));
@@ -178,7 +172,7 @@ pub(super) fn lr_compact_tables<'a>(
             }
         }
     }
-    if next_record != records.count() {
+    if !scan.pairs_hold && next_record != records.count() {
         return Err(unit_err(
             9,
             next_record,
@@ -259,10 +253,9 @@ pub(super) fn lr_compact_tables<'a>(
 
     // [V37] C, the opposites that records store and the overflow rows' opposites hold
     // corners; then the LR rules every layout keeps (V19; V21–V23 and V38 when verifying).
-    let slots = if rings == 1 {
-        SlotMap::with_flags(one_ring_flags(&tables, m_r), m_r, n0)
-    } else {
-        SlotMap::new(&tables)
+    let slots = match scan.flags {
+        Some(flags) => SlotMap::with_flags(flags, m_r, n0),
+        None => SlotMap::new(&tables),
     };
     let corner_ok = |x: u32| x == NONE || slots.is_corner(x);
     for i in 0..(m - m_r) as usize {
@@ -276,16 +269,18 @@ pub(super) fn lr_compact_tables<'a>(
             ));
         }
     }
-    for v in (0..m_r).filter(|&v| pairs.at(v as usize) >> 30 == EXTENDED) {
-        for x in tables.stored_opposites(v).into_iter().flatten() {
-            if !corner_ok(x) {
-                return Err(word_err(
-                    3,
-                    v as usize,
-                    Rule(37),
-                    format!("pair {v}: its record stores opposite {x}, not a corner of the mesh"),
-                ));
-            }
+    let stored = match scan.pairs_hold {
+        true => scan.stored,
+        false => stored_opposites(&tables),
+    };
+    for (v, x) in stored {
+        if !corner_ok(x) {
+            return Err(word_err(
+                3,
+                v as usize,
+                Rule(37),
+                format!("pair {v}: its record stores opposite {x}, not a corner of the mesh"),
+            ));
         }
     }
     for i in 0..overflow.count() {
@@ -323,22 +318,4 @@ pub(super) fn lr_compact_tables<'a>(
         })?;
     }
     Ok((tables, slots.triangles + n0 as u64))
-}
-
-/// The slot flags of [`SlotMap`] on one ring, where `v.n.n` is `v + 2` but at the ring's
-/// end: plain pairs read straight from their word, extended ones through the operators.
-fn one_ring_flags(tables: &CompactTables<LeWords, LeUnits>, m_r: u32) -> Vec<u8> {
-    let mut flags = Vec::with_capacity(2 * m_r as usize);
-    for v in 0..m_r {
-        let nn = (v + 2) - m_r * (v + 2 >= m_r) as u32;
-        let p = tables.pairs.at(v as usize);
-        match CompactTables::<LeWords, LeUnits>::plain_slots(v, p) {
-            Some(slots) => flags.extend(slots.map(|(tip, wart)| {
-                let redundant = !wart & (tip == nn);
-                slot_flags((tip != NULL) & !redundant, redundant | wart)
-            })),
-            None => flags.extend([0, 1].map(|side| layout_slot_flags(tables, v, side, nn))),
-        }
-    }
-    flags
 }

@@ -32,6 +32,7 @@ mod edgebreaker;
 pub(crate) mod fields;
 mod lr;
 mod lr_compact;
+mod lr_compact_scan;
 mod lr_rules;
 pub mod parts;
 pub(crate) mod positions;

@@ -40,6 +40,26 @@ fn corner_width(unit: u16) -> usize {
     }
 }
 
+/// An extended pair as [`CompactTables::decode_extended`] reads it.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ExtendedPair {
+    /// Its record's first unit.
+    pub start: usize,
+    /// Its record's units.
+    pub len: usize,
+    /// The tips of its left and right slots (`NULL` for a missing right triangle).
+    pub tips: [u32; 2],
+    /// The WART flags of its slots.
+    pub wart: [bool; 2],
+    /// The IRREGULAR flags of its slots.
+    pub irregular: [bool; 2],
+    /// Whether each side is IRREGULAR exactly when the head says it stores an opposite.
+    pub flags_agree: bool,
+    /// The stored opposites, at the positions of [`LrLayout::stored_opposite`]
+    /// (`2 side + second`).
+    pub opposites: [Option<u32>; 4],
+}
+
 /// The bit-efficient LR tables over words `W` and units `U` (vectors after construction,
 /// little-endian bytes in a container): the arrays of `spec/FORMAT.md` §3.5d.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -135,23 +155,58 @@ impl<W: Words, U: Units> CompactTables<W, U> {
         }
     }
 
-    /// The first unit of the record of extended pair `v` with pair word `p`.
-    /// The tips and WART flags of both slots of pair word `p` of ring vertex `v`, when the
-    /// pair is not extended (no record to read): the readers' fast path over the pairs.
-    #[inline(always)]
-    pub(crate) fn plain_slots(v: u32, p: u32) -> Option<[(u32, bool); 2]> {
-        let config = p >> 30;
-        (config != EXTENDED).then(|| {
-            [LEFT, RIGHT].map(|side| {
-                let tip = match short15(p >> (15 * side)) {
-                    0 => NULL,
-                    d => v.wrapping_add_signed(d),
-                };
-                (tip, config == WART_LEFT + side as u32)
-            })
+    /// Extended pair `v` (pair word `p`) decoded in one walk over its record, reading only
+    /// units it has checked exist: `None` when the record runs past the record units (as
+    /// [`CompactTables::record_len`]). For a reader's checks, which would otherwise decode
+    /// the record once per question.
+    pub(crate) fn decode_extended(&self, v: u32, p: u32) -> Option<ExtendedPair> {
+        let n = self.records.count();
+        let start = self.record_start(v, p);
+        let head = *(start < n).then(|| self.records.at(start)).as_ref()?;
+        let mut at = start + 1;
+        let long = |at: &mut usize| {
+            *at += 2;
+            (*at <= n).then(|| self.long_at(*at - 2))
+        };
+        let left = match p & FIELD13 {
+            0 => long(&mut at)?,
+            _ => v.wrapping_add_signed(short13(p)),
+        };
+        let right = match head >> HEAD_TIP_SHIFT {
+            RIGHT_LONG => long(&mut at)?,
+            bits => match short12(bits) {
+                0 => NULL,
+                d => v.wrapping_add_signed(d),
+            },
+        };
+        let t0_reference = self.blocks.at(2 * (v >> BLOCK_SHIFT) as usize + 1);
+        let mut opposites = [None; 4];
+        for (q, x) in opposites.iter_mut().enumerate() {
+            if head >> q & 1 != 0 {
+                let unit = *(at < n).then(|| self.records.at(at)).as_ref()?;
+                let width = corner_width(unit);
+                if at + width > n {
+                    return None;
+                }
+                *x = Some(self.corner_field(unit, v, t0_reference, || self.long_at(at + 1)));
+                at += width;
+            }
+        }
+        let irregular = [LEFT, RIGHT].map(|side| p & X_IRREGULAR[side] != 0);
+        Some(ExtendedPair {
+            start,
+            len: at - start,
+            tips: [left, right],
+            wart: [LEFT, RIGHT].map(|side| p & X_WART[side] != 0),
+            irregular,
+            flags_agree: [LEFT, RIGHT]
+                .iter()
+                .all(|&side| (head >> (2 * side) & 3 != 0) == irregular[side]),
+            opposites,
         })
     }
 
+    /// The first unit of the record of extended pair `v` with pair word `p`.
     #[inline(always)]
     pub(crate) fn record_start(&self, v: u32, p: u32) -> usize {
         let block = (v >> BLOCK_SHIFT) as usize;
@@ -166,25 +221,6 @@ impl<W: Words, U: Units> CompactTables<W, U> {
         [LEFT, RIGHT]
             .iter()
             .all(|&side| (head >> (2 * side) & 3 != 0) == (p & X_IRREGULAR[side] != 0))
-    }
-
-    /// The opposites that the record of extended pair `v` stores, at the positions of
-    /// [`LrLayout::stored_opposite`] (`2 side + second`), read in one walk over the record
-    /// (the corner checks of a reader; the operators read one field).
-    pub(crate) fn stored_opposites(&self, v: u32) -> [Option<u32>; 4] {
-        let p = self.pair(v);
-        let r = self.record(v, p);
-        let t0_reference = self.blocks.at(2 * (v >> BLOCK_SHIFT) as usize + 1);
-        let mut at = r.opposites;
-        let mut out = [None; 4];
-        for (q, x) in out.iter_mut().enumerate() {
-            if r.head >> q & 1 != 0 {
-                let unit = self.records.at(at);
-                *x = Some(self.corner_field(unit, v, t0_reference, || self.long_at(at + 1)));
-                at += corner_width(unit);
-            }
-        }
-        out
     }
 
     /// The units of the record of extended pair `v`, or `None` when they run past the

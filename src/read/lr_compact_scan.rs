@@ -1,0 +1,146 @@
+//! The well-formed open's fast path over the pairs of `LRBE` (rule V35, and the slot flags of
+//! [`SlotMap`] on one ring): plain pairs, most of them, in a branch-free pass over their
+//! words; extended pairs, with a record to read, in a second pass over those alone. It only
+//! says whether the rules hold: when they do not, the reader's pair-by-pair loop finds the
+//! first fault and names it.
+
+use super::lr_rules::slot_flags;
+use crate::lr::compact::{BLOCK_SHIFT, EXTENDED, WART_LEFT};
+use crate::lr::{CompactTables, LrLayout, NULL};
+use crate::words::{LeUnits, LeWords, Units, Words};
+
+type Tables<'a> = CompactTables<LeWords<'a>, LeUnits<'a>>;
+
+/// What [`scan_pairs`] finds.
+pub(super) struct PairScan {
+    /// Whether [V35] holds.
+    pub pairs_hold: bool,
+    /// On one ring (and when V35 holds), the slot flags of [`SlotMap`](super::lr_rules::SlotMap).
+    pub flags: Option<Vec<u8>>,
+    /// When V35 holds: every opposite that a record stores, with its pair, for [V37].
+    pub stored: Vec<(u32, u32)>,
+}
+
+/// Sign-extends the low 15 bits.
+#[inline(always)]
+fn short15(bits: u32) -> i32 {
+    ((bits as i32) << 17) >> 17
+}
+
+/// [V35] on every pair, and with `one_ring` the slot flags, for tables of `m` vertices.
+pub(super) fn scan_pairs(t: &Tables, m: u32, one_ring: bool) -> PairScan {
+    let m_r = t.m_r;
+    let mut flags = vec![0u8; if one_ring { 2 * m_r as usize } else { 0 }];
+    // Plain pairs: tips in range (the left one never NULL, the right one NULL only without
+    // WART), bitwise rather than short-circuit logic; extended pairs are checked below.
+    let mut bad = 0u32;
+    for (v, word) in t.pairs.0.chunks_exact(4).enumerate() {
+        let p = u32::from_le_bytes(word.try_into().expect("four bytes"));
+        let v = v as u32;
+        let config = p >> 30;
+        let plain = (config != EXTENDED) as u32;
+        let d = [short15(p), short15(p >> 15)];
+        let tip = d.map(|d| {
+            if d == 0 {
+                NULL
+            } else {
+                v.wrapping_add_signed(d)
+            }
+        });
+        let wart = [config == WART_LEFT, config == WART_LEFT + 1].map(|w| w as u32);
+        let ok =
+            (tip[0] < m) as u32 & ((tip[1] < m) as u32 | ((tip[1] == NULL) as u32 & (1 ^ wart[1])));
+        bad |= plain & (1 ^ ok);
+        if one_ring {
+            let nn = (v + 2) - m_r * (v + 2 >= m_r) as u32;
+            for side in 0..2 {
+                let redundant = (1 ^ wart[side]) & (tip[side] == nn) as u32;
+                let canonical = (tip[side] != NULL) as u32 & (1 ^ redundant);
+                flags[2 * v as usize + side] =
+                    slot_flags(canonical != 0, (redundant | wart[side]) != 0);
+            }
+        }
+    }
+    let mut stored = Vec::new();
+    let pairs_hold =
+        bad == 0 && extended_pairs_hold(t, m, one_ring.then_some(&mut flags), &mut stored);
+    PairScan {
+        pairs_hold,
+        flags: one_ring.then_some(flags),
+        stored,
+    }
+}
+
+/// [V35] on the extended pairs, in ring order: records tile `RECORDS`, each block's record
+/// start is the records before it, every record inside the units, IRREGULAR flags as the
+/// heads say, tips in range; and their slot flags (`v.n.n` on one ring) and stored
+/// opposites (`(pair, corner)`, in `stored`).
+fn extended_pairs_hold(
+    t: &Tables,
+    m: u32,
+    mut flags: Option<&mut Vec<u8>>,
+    stored: &mut Vec<(u32, u32)>,
+) -> bool {
+    let (m_r, records) = (t.m_r, t.records.count());
+    let blocks = m_r.div_ceil(1 << BLOCK_SHIFT) as usize;
+    let (mut next_record, mut next_block) = (0usize, 0usize);
+    // Every block whose first vertex comes before `v` starts at the records so far.
+    let blocks_start = |upto: usize, next_block: &mut usize, next_record: usize| {
+        let mut ok = true;
+        while *next_block < upto {
+            ok &= t.blocks.at(2 * *next_block) as usize == next_record;
+            *next_block += 1;
+        }
+        ok
+    };
+    let extended = (0..m_r).filter(|&v| t.pairs.at(v as usize) >> 30 == EXTENDED);
+    for v in extended {
+        let p = t.pairs.at(v as usize);
+        if !blocks_start(
+            (v >> BLOCK_SHIFT) as usize + 1,
+            &mut next_block,
+            next_record,
+        ) {
+            return false;
+        }
+        let Some(x) = t.decode_extended(v, p) else {
+            return false;
+        };
+        if x.start != next_record || next_record + x.len > records || !x.flags_agree {
+            return false;
+        }
+        next_record += x.len;
+        stored.extend(x.opposites.into_iter().flatten().map(|c| (v, c)));
+        let nn = t.ring_next(t.ring_next(v));
+        for side in [0, 1] {
+            let (tip, wart, irregular) = (x.tips[side], x.wart[side], x.irregular[side]);
+            let right_null = tip == NULL && side == 1 && !wart;
+            if !(tip < m || right_null) || (tip == NULL && irregular) {
+                return false;
+            }
+            if let Some(flags) = flags.as_deref_mut() {
+                // An IRREGULAR slot is never redundant.
+                let redundant = !wart && !irregular && tip == nn;
+                flags[2 * v as usize + side] =
+                    slot_flags(irregular || tip != NULL && !redundant, redundant || wart);
+            }
+        }
+    }
+    blocks_start(blocks, &mut next_block, next_record) && next_record == records
+}
+
+/// Every opposite that a record stores, with its pair, by decoding the records one by one
+/// (after the reader's loop has checked V35).
+pub(super) fn stored_opposites(t: &Tables) -> Vec<(u32, u32)> {
+    let mut stored = Vec::new();
+    for v in 0..t.m_r {
+        let p = t.pairs.at(v as usize);
+        if let Some(x) = (p >> 30 == EXTENDED)
+            .then(|| t.decode_extended(v, p))
+            .flatten()
+        {
+            stored.extend(x.opposites.into_iter().flatten().map(|c| (v, c)));
+        }
+    }
+    stored
+}
