@@ -1,6 +1,6 @@
-//! The container in one run: encode, validation (`read::open`) against a plain copy of the same
-//! bytes, decode to a mesh, and the Fig. 10 loops on the zero-copy view against the owned LR
-//! and the corner table.
+//! The container in one run: encode, the well-formed check (`read::open`) and full validation
+//! (`read::open_verified`) against a plain copy of the same bytes, decode to a mesh, and the
+//! Fig. 10 loops on the zero-copy view against the owned LR and the corner table.
 //!
 //! `cargo bench --bench container`; `LRMESH_BENCH_TRIANGLES` or `LRMESH_BENCH_MESH=file` as in
 //! the LR bench.
@@ -13,7 +13,7 @@ use std::time::Duration;
 
 use lrmesh::bench::{fig10_loops, LOOP_NAMES};
 use lrmesh::lr::Lr;
-use lrmesh::read::{open, Limits};
+use lrmesh::read::{open, open_verified, Limits};
 use lrmesh::write::{encode, EncodeOptions};
 use lrmesh::{CornerOps, CornerTable};
 
@@ -37,6 +37,11 @@ fn main() {
     let validate = median_time(runs, || {
         open(&bytes, &Limits::default()).unwrap().triangle_count()
     });
+    let verify = median_time(runs, || {
+        open_verified(&bytes, &Limits::default())
+            .unwrap()
+            .triangle_count()
+    });
     let view = open(&bytes, &Limits::default()).unwrap();
     let decode = median_time(runs, || view.to_mesh());
     let gib = |d: Duration| bytes.len() as f64 / d.as_secs_f64() / (1u64 << 30) as f64;
@@ -53,7 +58,8 @@ fn main() {
         "1.00"
     );
     for (name, t) in [
-        ("open + validate", validate),
+        ("open (well formed)", validate),
+        ("open_verified (every rule)", verify),
         ("decode to an indexed mesh", decode),
         ("encode (corner table + LR)", encode_time),
     ] {
