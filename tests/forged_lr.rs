@@ -491,3 +491,26 @@ fn v38_vertex_corner_starts_its_fan() {
         open(&other, &Limits::default()).unwrap();
     }
 }
+
+/// `Container::verify` on a container opened as well formed: the semantic rules checked
+/// later, with the error `open_verified` gives; a valid file verifies and says so.
+#[test]
+fn verify_after_a_well_formed_open() {
+    let bytes = forge_sections(&vector("closed_tetrahedron.lrm"), |s| {
+        s.retain(|section| section.0 != Tag::PERM)
+    });
+    let mut view = open(&bytes, &Limits::default()).unwrap();
+    assert!(!view.is_verified());
+    view.verify().unwrap();
+    assert!(view.is_verified());
+    // The tetrahedron with L[1] made 0 and MESH's count to match (v22_opposites).
+    let bad = forge(&bytes, Tag::LRTB, |p| set_lrtb(p, LR, 2, 0));
+    let bad = forge(&bad, Tag::MESH, |p| put(p, 8, 5));
+    let mut view = open(&bad, &Limits::default()).unwrap();
+    let late = view.verify().unwrap_err().to_string();
+    let early = lrmesh::read::open_verified(&bad, &Limits::default())
+        .unwrap_err()
+        .to_string();
+    assert_eq!(late, early);
+    assert!(late.contains("[V22]"), "{late}");
+}
