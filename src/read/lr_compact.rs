@@ -253,7 +253,8 @@ pub(super) fn lr_compact_tables<'a>(
 
     // [V37] C, the opposites that records store and the overflow rows' opposites hold
     // corners; then the LR rules every layout keeps (V19; V21–V23 and V38 when verifying).
-    let slots = match scan.flags {
+    // The fast pass's flags only when it found V35 to hold: it stops at a fault.
+    let slots = match scan.flags.filter(|_| scan.pairs_hold) {
         Some(flags) => SlotMap::with_flags(flags, m_r, n0),
         None => SlotMap::new(&tables),
     };
