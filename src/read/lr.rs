@@ -106,8 +106,8 @@ pub(super) fn lr_tables<'a>(
     let mut record_used = vec![false; records as usize];
     // With one ring, the same pass also flags the slots for [V19] and [V20].
     let (entries_ok, one_ring_flags) = scan_entries(lr, vo_star, m, records, m_r, rings == 1);
-    let slots = if entries_ok { 0 } else { 2 * m_r as usize };
-    for slot in 0..slots {
+    let slots_to_search = if entries_ok { 0 } else { 2 * m_r as usize };
+    for slot in 0..slots_to_search {
         let e = lr.at(slot);
         let value = e & VALUE;
         let bad = |message: String| {
@@ -138,7 +138,7 @@ pub(super) fn lr_tables<'a>(
             return bad(format!("vertex {value} out of range ({m} vertices)"));
         }
     }
-    if let Some(i) = record_used.iter().position(|&u| slots > 0 && !u) {
+    if let Some(i) = record_used.iter().position(|&u| slots_to_search > 0 && !u) {
         return Err(word_err(
             6,
             3 * i,
