@@ -134,14 +134,7 @@ pub fn container_forged(data: &[u8]) {
     let Some((&choice, edits)) = data.split_first() else {
         return;
     };
-    let bytes = forged_base(choice);
-    let mut sections: Vec<_> = open(&bytes, &Limits::default())
-        .expect("what we write opens")
-        .sections
-        .sections
-        .iter()
-        .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
-        .collect();
+    let mut sections = base_sections(choice);
     for edit in edits.chunks_exact(4) {
         let index = edit[0] as usize % sections.len();
         let section = &mut sections[index].2;
@@ -166,14 +159,7 @@ pub fn operators(data: &[u8]) {
         return;
     };
     let choice = (choice & !3) | ((choice & 3) % 3);
-    let bytes = forged_base(choice);
-    let mut sections: Vec<_> = open(&bytes, &Limits::default())
-        .expect("what we write opens")
-        .sections
-        .sections
-        .iter()
-        .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
-        .collect();
+    let mut sections = base_sections(choice);
     let connectivity = [Tag::LRTB, Tag::LRBE, Tag::STRP];
     let Some(section) = sections
         .iter_mut()
@@ -190,6 +176,18 @@ pub fn operators(data: &[u8]) {
         section[2 * to..2 * to + 2].copy_from_slice(&unit);
     }
     container(&assemble(&sections));
+}
+
+/// The sections of [`forged_base`]`(choice)`, to forge and assemble again.
+fn base_sections(choice: u8) -> Vec<crate::write::SectionBytes> {
+    let bytes = forged_base(choice);
+    open(&bytes, &Limits::default())
+        .expect("what we write opens")
+        .sections
+        .sections
+        .iter()
+        .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
+        .collect()
 }
 
 /// The valid container [`container_forged`] starts from: bits 0–1 of `choice` the kind,

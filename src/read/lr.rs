@@ -4,7 +4,7 @@
 
 use super::fields::Fields;
 use super::lr_rules::{
-    check_rings, check_vertex_corners, slot_flags, verified_boundaries, SlotMap,
+    check_rings, check_vertex_corners, ring_slot_flags, verified_boundaries, SlotMap,
 };
 use super::Sections;
 use crate::corner_table::NONE;
@@ -237,9 +237,7 @@ fn scan_entries(
             let (value, is_irregular, wart) = check(slot, e);
             let v = (slot / 2) as u32;
             let nn = (v + 2) - m_r * (v + 2 >= m_r) as u32;
-            let redundant = (1 ^ wart) & (1 ^ is_irregular) & (value == nn) as u32;
-            let canonical = is_irregular | ((value != NULL) as u32 & (1 ^ redundant));
-            *flag = slot_flags(canonical != 0, (redundant | wart) != 0);
+            *flag = ring_slot_flags(value, wart, is_irregular, nn);
         }
         Some(flags)
     } else {

@@ -127,9 +127,9 @@ pub(super) fn lr_compact_tables<'a>(
                     format!("record of pair {v} at {start}, expected {next_record}"),
                 ));
             }
-            let len = tables
-                .record_len(v)
-                .filter(|&len| start + len <= records.count())
+            let record = tables
+                .decode_extended(v, p)
+                .filter(|x| start + x.len <= records.count())
                 .ok_or_else(|| {
                     unit_err(
                         9,
@@ -138,7 +138,7 @@ pub(super) fn lr_compact_tables<'a>(
                         format!("record of pair {v} runs past the record units"),
                     )
                 })?;
-            if !tables.irregular_flags_agree(v) {
+            if !record.flags_agree {
                 return Err(word_err(
                     3,
                     v as usize,
@@ -146,7 +146,7 @@ pub(super) fn lr_compact_tables<'a>(
                     format!("pair {v}: IRREGULAR flag and stored opposites disagree"),
                 ));
             }
-            next_record += len;
+            next_record += record.len;
         }
         for side in [0, 1] {
             let tip = tables.tip(v, side);

@@ -4,7 +4,7 @@
 //! says whether the rules hold: when they do not, the reader's pair-by-pair loop finds the
 //! first fault and names it.
 
-use super::lr_rules::slot_flags;
+use super::lr_rules::ring_slot_flags;
 use crate::lr::compact::{BLOCK_SHIFT, EXTENDED, WART_LEFT};
 use crate::lr::{CompactTables, LrLayout, NULL};
 use crate::words::{LeUnits, LeWords, Units, Words};
@@ -54,10 +54,7 @@ pub(super) fn scan_pairs(t: &Tables, m: u32, one_ring: bool) -> PairScan {
         if one_ring {
             let nn = (v + 2) - m_r * (v + 2 >= m_r) as u32;
             for side in 0..2 {
-                let redundant = (1 ^ wart[side]) & (tip[side] == nn) as u32;
-                let canonical = (tip[side] != NULL) as u32 & (1 ^ redundant);
-                flags[2 * v as usize + side] =
-                    slot_flags(canonical != 0, (redundant | wart[side]) != 0);
+                flags[2 * v as usize + side] = ring_slot_flags(tip[side], wart[side], 0, nn);
             }
         }
     }
@@ -119,10 +116,8 @@ fn extended_pairs_hold(
                 return false;
             }
             if let Some(flags) = flags.as_deref_mut() {
-                // An IRREGULAR slot is never redundant.
-                let redundant = !wart && !irregular && tip == nn;
                 flags[2 * v as usize + side] =
-                    slot_flags(irregular || tip != NULL && !redundant, redundant || wart);
+                    ring_slot_flags(tip, wart as u32, irregular as u32, nn);
             }
         }
     }

@@ -86,23 +86,27 @@ pub(super) struct SlotMap {
 const CANONICAL: u8 = 1;
 const JUMPS: u8 = 2;
 
-/// The flags of one slot in a [`SlotMap`]: whether it holds a canonical triangle, whether it
-/// jumps to the same side of `v.n`.
+/// The flags of a ring slot in a [`SlotMap`], from its tip (any value with IRREGULAR), its
+/// WART and IRREGULAR flags (0 or 1) and `nn = v.n.n`: a redundant T2 copy (tip `v.n.n`,
+/// neither flag) and a wart slot jump to the same side of `v.n`; the slot holds a canonical
+/// triangle unless it is such a copy or a missing right triangle (`NULL`). An IRREGULAR slot
+/// is never redundant, and its tip (checked below `m` by V17 or V35) never `NULL`. Bitwise
+/// rather than short-circuit logic: the flags follow no pattern a branch predictor could
+/// learn, and the passes over every slot vectorize.
 #[inline(always)]
-pub(super) fn slot_flags(canonical: bool, jumps: bool) -> u8 {
-    (canonical as u8 * CANONICAL) | (jumps as u8 * JUMPS)
+pub(super) fn ring_slot_flags(tip: u32, wart: u32, irregular: u32, nn: u32) -> u8 {
+    let redundant = (1 ^ wart) & (1 ^ irregular) & (tip == nn) as u32;
+    let canonical = irregular | ((tip != NULL) as u32 & (1 ^ redundant));
+    (canonical as u8 * CANONICAL) | ((redundant | wart) as u8 * JUMPS)
 }
 
 /// The flags of slot `(v, side)` read through the layout's operators; `nn` is `v.n.n`.
 #[inline]
 pub(super) fn layout_slot_flags<T: LrLayout>(tables: &T, v: u32, side: usize, nn: u32) -> u8 {
-    // An IRREGULAR slot is never redundant, and its tip (checked below `m` by V17 or V35)
-    // is not NULL: no need to read its record.
+    // No need to read an IRREGULAR slot's record for its tip.
     let irregular = tables.irregular(v, side);
-    let wart = tables.wart(v, side);
     let tip = if irregular { 0 } else { tables.tip(v, side) };
-    let redundant = !wart && !irregular && tip == nn;
-    slot_flags(irregular || tip != NULL && !redundant, redundant || wart)
+    ring_slot_flags(tip, tables.wart(v, side) as u32, irregular as u32, nn)
 }
 
 impl SlotMap {
@@ -118,7 +122,7 @@ impl SlotMap {
         SlotMap::with_flags(flags, m_r, tables.t0_count())
     }
 
-    /// The map of flags made by [`slot_flags`], one per ring slot in slot order.
+    /// The map of flags made by [`ring_slot_flags`], one per ring slot in slot order.
     pub(super) fn with_flags(flags: Vec<u8>, m_r: u32, t0: u32) -> SlotMap {
         let triangles = flags.iter().map(|&f| (f & CANONICAL) as u64).sum();
         SlotMap {

@@ -156,9 +156,8 @@ impl<W: Words, U: Units> CompactTables<W, U> {
     }
 
     /// Extended pair `v` (pair word `p`) decoded in one walk over its record, reading only
-    /// units it has checked exist: `None` when the record runs past the record units (as
-    /// [`CompactTables::record_len`]). For a reader's checks, which would otherwise decode
-    /// the record once per question.
+    /// units it has checked exist: `None` when the record runs past the record units. For a
+    /// reader's checks, which would otherwise decode the record once per question.
     pub(crate) fn decode_extended(&self, v: u32, p: u32) -> Option<ExtendedPair> {
         let n = self.records.count();
         let start = self.record_start(v, p);
@@ -211,41 +210,6 @@ impl<W: Words, U: Units> CompactTables<W, U> {
     pub(crate) fn record_start(&self, v: u32, p: u32) -> usize {
         let block = (v >> BLOCK_SHIFT) as usize;
         self.blocks.at(2 * block) as usize + ((p >> RECORD_SHIFT) & FIELD13) as usize
-    }
-
-    /// Whether the IRREGULAR flags of extended pair `v` agree with its record's head (a side
-    /// is IRREGULAR iff it stores an opposite). Reads the head: check `record_len` first.
-    pub(crate) fn irregular_flags_agree(&self, v: u32) -> bool {
-        let p = self.pair(v);
-        let head = self.records.at(self.record_start(v, p));
-        [LEFT, RIGHT]
-            .iter()
-            .all(|&side| (head >> (2 * side) & 3 != 0) == (p & X_IRREGULAR[side] != 0))
-    }
-
-    /// The units of the record of extended pair `v`, or `None` when they run past the
-    /// record units. Reads only units it has checked exist (for validation).
-    pub(crate) fn record_len(&self, v: u32) -> Option<usize> {
-        let p = self.pair(v);
-        let start = self.record_start(v, p);
-        let n = self.records.count();
-        let head = *(start < n).then(|| self.records.at(start)).as_ref()?;
-        let mut at = start + 1;
-        if p & FIELD13 == 0 {
-            at += 2;
-        }
-        if head >> HEAD_TIP_SHIFT == RIGHT_LONG {
-            at += 2;
-        }
-        for q in 0..4 {
-            if head >> q & 1 != 0 {
-                if at >= n {
-                    return None;
-                }
-                at += corner_width(self.records.at(at));
-            }
-        }
-        (at <= n).then_some(at - start)
     }
 
     /// Number of T0 overflow rows.
