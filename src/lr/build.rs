@@ -1,6 +1,7 @@
 //! Construction of the LR from a corner table: closing boundaries with dummy vertices,
 //! RING-EXPANDER per component, triangle classes, warts, and irregular records.
 
+use super::ring::{next3, prev3, Prepared, Rings};
 use super::tables::{
     find_boundaries_on_ring, ring_bits, LrLayout, LrTables, LEFT, NULL, RIGHT, VALUE, WART,
 };
@@ -8,217 +9,6 @@ use super::{Lr, LrCounts, LrOptions};
 use crate::corner_table::{CornerTable, NONE};
 use crate::error::{Error, Result};
 use crate::ids::{Triangle, Vertex};
-use crate::ops::CornerOps;
-use crate::rng::Rng;
-
-/// The corner table closed by dummy vertices and triangles over each boundary loop.
-struct Closed {
-    v: Vec<u32>,
-    o: Vec<u32>,
-    real_triangles: u32,
-    real_vertices: u32,
-    /// Real and dummy vertices.
-    total_vertices: u32,
-}
-
-fn next3(c: u32) -> u32 {
-    if c % 3 == 2 {
-        c - 2
-    } else {
-        c + 1
-    }
-}
-
-fn prev3(c: u32) -> u32 {
-    if c % 3 == 0 {
-        c + 2
-    } else {
-        c - 1
-    }
-}
-
-impl Closed {
-    /// Adds, for every boundary half-edge `a -> b` (facing corner `c`), a dummy triangle
-    /// `(b, a, d)` where `d` is the dummy vertex of that boundary loop.
-    fn new(ct: &CornerTable) -> Result<Closed> {
-        let mut v = ct.v_table().to_vec();
-        let mut o = ct.o_table().to_vec();
-        let real_triangles = (v.len() / 3) as u32;
-        let real_vertices = ct.vertex_id_bound();
-        // The boundary half-edge arriving at each vertex (one at most: one fan per vertex).
-        let mut incoming = vec![NONE; real_vertices as usize];
-        let boundary: Vec<u32> = (0..v.len() as u32)
-            .filter(|&c| o[c as usize] == NONE)
-            .collect();
-        for &c in &boundary {
-            incoming[v[prev3(c) as usize] as usize] = c;
-        }
-        // Dummy triangle of boundary corner c, by the order of `boundary`.
-        let mut dummy_of = vec![NONE; v.len()];
-        for (k, &c) in boundary.iter().enumerate() {
-            dummy_of[c as usize] = real_triangles + k as u32;
-        }
-        let total = v.len() + 3 * boundary.len();
-        if total >= (NONE / 2) as usize {
-            return Err(Error::Unsupported("mesh too large for LR".into()));
-        }
-        v.resize(total, NONE);
-        o.resize(total, NONE);
-        let mut next_dummy_vertex = real_vertices;
-        for &c in &boundary {
-            let t = dummy_of[c as usize];
-            let (a, b) = (v[next3(c) as usize], v[prev3(c) as usize]);
-            let base = 3 * t as usize;
-            v[base] = b;
-            v[base + 1] = a;
-            o[base + 2] = c;
-            o[c as usize] = base as u32 + 2;
-            // Corner 0 (at b) faces a -> d: the dummy of the boundary half-edge into a.
-            let before = dummy_of[incoming[a as usize] as usize];
-            o[base] = 3 * before + 1;
-            o[3 * before as usize + 1] = base as u32;
-        }
-        // One dummy vertex per loop: walk the loop through the corner-0/corner-1 links.
-        for &c in &boundary {
-            let t = dummy_of[c as usize] as usize;
-            if v[3 * t + 2] != NONE {
-                continue;
-            }
-            let d = next_dummy_vertex;
-            next_dummy_vertex += 1;
-            let mut u = t;
-            while v[3 * u + 2] == NONE {
-                v[3 * u + 2] = d;
-                u = o[3 * u] as usize / 3;
-            }
-        }
-        Ok(Closed {
-            v,
-            o,
-            real_triangles,
-            real_vertices,
-            total_vertices: next_dummy_vertex,
-        })
-    }
-
-    #[inline]
-    fn right(&self, c: u32) -> u32 {
-        self.o[prev3(c) as usize]
-    }
-}
-
-/// RING-EXPANDER (section 4.2) from seed corner `s`: marks invaded triangles and visited
-/// vertices. Dummy vertices must already be marked visited.
-fn ring_expander(mesh: &Closed, s: u32, vm: &mut [bool], tm: &mut [bool]) {
-    let v = &mesh.v;
-    vm[v[next3(s) as usize] as usize] = true;
-    vm[v[prev3(s) as usize] as usize] = true;
-    let stop = mesh.o[s as usize];
-    let mut c = s;
-    loop {
-        if !vm[v[c as usize] as usize] {
-            vm[v[c as usize] as usize] = true;
-            tm[c as usize / 3] = true;
-        } else if !tm[c as usize / 3] {
-            c = mesh.o[c as usize];
-        }
-        c = mesh.right(c);
-        if c == stop {
-            break;
-        }
-    }
-}
-
-/// HYBRID-RING-EXPANDER (section 6.1) with period `period`: the invasion proceeds depth
-/// first from a double-ended queue of candidate corners, but after every `period`-th invaded
-/// triangle it resumes from the oldest candidate (breadth first), which bounds the length of
-/// the corridors and so the ring offsets `v.l - v` and `v.r - v`. `period = 1` is breadth
-/// first. Dummy vertices must already be marked visited.
-fn hybrid_ring_expander(
-    mesh: &Closed,
-    s: u32,
-    period: u32,
-    vm: &mut [bool],
-    tm: &mut [bool],
-    deque: &mut std::collections::VecDeque<u32>,
-) {
-    let v = &mesh.v;
-    vm[v[next3(s) as usize] as usize] = true;
-    vm[v[prev3(s) as usize] as usize] = true;
-    deque.clear();
-    let mut invaded = 0u32;
-    let mut c = s;
-    loop {
-        if !vm[v[c as usize] as usize] {
-            vm[v[c as usize] as usize] = true;
-            tm[c as usize / 3] = true;
-            // c.l and c.r: the corners facing the two edges the invasion exposed.
-            deque.push_back(mesh.o[next3(c) as usize]);
-            deque.push_back(mesh.o[prev3(c) as usize]);
-            invaded = (invaded + 1) % period;
-        }
-        let candidate = if invaded == 0 {
-            deque.pop_front()
-        } else {
-            deque.pop_back()
-        };
-        match candidate {
-            Some(next) => c = next,
-            None => break,
-        }
-    }
-}
-
-/// Per-component work lists of the closed mesh.
-struct Component {
-    /// Real and dummy triangles.
-    triangles: Vec<u32>,
-    /// Real triangles only: the seeds are drawn from these.
-    real_triangles: Vec<u32>,
-    /// Real vertices.
-    vertices: Vec<u32>,
-}
-
-fn components(mesh: &Closed) -> Vec<Component> {
-    let nt = mesh.v.len() / 3;
-    let mut seen = vec![false; nt];
-    let mut vertex_seen = vec![false; mesh.real_vertices as usize];
-    let mut out = Vec::new();
-    let mut stack = Vec::new();
-    for start in 0..mesh.real_triangles {
-        if seen[start as usize] {
-            continue;
-        }
-        let mut comp = Component {
-            triangles: Vec::new(),
-            real_triangles: Vec::new(),
-            vertices: Vec::new(),
-        };
-        seen[start as usize] = true;
-        stack.push(start);
-        while let Some(t) = stack.pop() {
-            comp.triangles.push(t);
-            if t < mesh.real_triangles {
-                comp.real_triangles.push(t);
-            }
-            for i in 0..3 {
-                let c = 3 * t as usize + i;
-                let x = mesh.v[c];
-                if x < mesh.real_vertices && !vertex_seen[x as usize] {
-                    vertex_seen[x as usize] = true;
-                    comp.vertices.push(x);
-                }
-                let u = mesh.o[c] / 3;
-                if !seen[u as usize] {
-                    seen[u as usize] = true;
-                    stack.push(u);
-                }
-            }
-        }
-        out.push(comp);
-    }
-    out
-}
 
 /// The table corners of a slot, in the order: at `v`, the tip, at the far vertex. Left slot `(v, tip, far)`: tip corner `c`, `v` at `c.p`, far at `c.n`.
 /// Right slot `(far, tip, v)`: tip corner `r`, `v` at `r.n`, far at `r.p`.
@@ -227,38 +17,6 @@ fn slot_corners(tip_corner: u32, side: usize) -> [u32; 3] {
         [prev3(tip_corner), tip_corner, next3(tip_corner)]
     } else {
         [next3(tip_corner), tip_corner, prev3(tip_corner)]
-    }
-}
-
-/// Ring edges of real triangle `t`: edges to a neighbour on the other side of the ring.
-fn ring_edges(mesh: &Closed, tm: &[bool], t: u32) -> usize {
-    let inside = tm[t as usize];
-    (0..3)
-        .filter(|&i| tm[mesh.o[3 * t as usize + i] as usize / 3] != inside)
-        .count()
-}
-
-/// T0 triangles of a component that no wart can take: those without a T2 neighbour. (A T2 has
-/// one edge off the ring, so no two T0s compete for it, and every other T0 finds a wart.)
-fn t0_after_warts(mesh: &Closed, comp: &Component, tm: &[bool]) -> usize {
-    comp.real_triangles
-        .iter()
-        .filter(|&&t| {
-            ring_edges(mesh, tm, t) == 0
-                && (0..3).all(|i| {
-                    let u = mesh.o[3 * t as usize + i] / 3;
-                    u >= mesh.real_triangles || ring_edges(mesh, tm, u) != 2
-                })
-        })
-        .count()
-}
-
-fn reset(comp: &Component, vm: &mut [bool], tm: &mut [bool]) {
-    for &x in &comp.vertices {
-        vm[x as usize] = false;
-    }
-    for &t in &comp.triangles {
-        tm[t as usize] = false;
     }
 }
 
@@ -275,85 +33,21 @@ impl Lr {
     /// Builds the LR with HYBRID-RING-EXPANDER of period `period` (section 6.1), or with
     /// RING-EXPANDER (depth first) for `period = 0`.
     pub fn build_with_period(ct: &CornerTable, options: &LrOptions, period: u32) -> Result<Lr> {
-        let mesh = Closed::new(ct)?;
-        let mut deque = std::collections::VecDeque::new();
-        let mut expand = |s: u32, vm: &mut [bool], tm: &mut [bool]| {
-            if period == 0 {
-                ring_expander(&mesh, s, vm, tm)
-            } else {
-                hybrid_ring_expander(&mesh, s, period, vm, tm, &mut deque)
-            }
-        };
-        let real_vertices = mesh.real_vertices;
-        if real_vertices >= NULL {
-            return Err(Error::Unsupported(
-                "LR holds at most 2^30 - 2 vertices".into(),
-            ));
-        }
-        let mut vm = vec![false; mesh.total_vertices as usize];
-        for x in real_vertices..mesh.total_vertices {
-            vm[x as usize] = true;
-        }
-        let mut tm = vec![false; mesh.v.len() / 3];
-        let mut rng = Rng::new(options.seed);
+        let prepared = Prepared::new(ct)?;
+        let rings = prepared.rings(period, options.tries, options.seed);
+        Lr::from_rings(ct, &prepared, rings)
+    }
 
-        // Ring per component: best of several seeds, then walk it to number its vertices.
-        let mut ring_id = vec![NONE; real_vertices as usize];
-        let mut ring_corner = Vec::new(); // per ring vertex: the tip corner of its left slot
-        let mut starts = vec![0u32];
-        for comp in components(&mesh) {
-            // Fewest isolated vertices first, then fewest T0 triangles left after wart
-            // skipping (each costs its own six references and makes its neighbours irregular).
-            let mut best: Option<((usize, usize), u32)> = None;
-            for _ in 0..options.tries.max(1) {
-                let t = comp.real_triangles[rng.below(comp.real_triangles.len() as u32) as usize];
-                let s = 3 * t + rng.below(3);
-                reset(&comp, &mut vm, &mut tm);
-                expand(s, &mut vm, &mut tm);
-                let isolated = comp.vertices.iter().filter(|&&x| !vm[x as usize]).count();
-                let t0 = t0_after_warts(&mesh, &comp, &tm);
-                if best.is_none_or(|(b, _)| (isolated, t0) < b) {
-                    best = Some(((isolated, t0), s));
-                }
-            }
-            let (_, s) = best.expect("at least one try");
-            reset(&comp, &mut vm, &mut tm);
-            expand(s, &mut vm, &mut tm);
-            // A corner of an invaded triangle facing a non-invaded one starts the walk.
-            let start = comp
-                .triangles
-                .iter()
-                .filter(|&&t| tm[t as usize])
-                .flat_map(|&t| 3 * t..3 * t + 3)
-                .find(|&c| !tm[mesh.o[c as usize] as usize / 3])
-                .expect("an invaded region has a boundary");
-            let first = ring_corner.len();
-            let mut c = start;
-            loop {
-                ring_corner.push(c);
-                // Rotate around the far vertex through invaded triangles to the next ring edge.
-                let mut k = prev3(c);
-                while tm[mesh.o[k as usize] as usize / 3] {
-                    k = prev3(mesh.o[k as usize]);
-                }
-                c = k;
-                if c == start {
-                    break;
-                }
-            }
-            if ring_corner.len() - first == 3 {
-                // A ring of three: keep the component as T0 triangles and isolated vertices.
-                ring_corner.truncate(first);
-                for &t in &comp.triangles {
-                    tm[t as usize] = false;
-                }
-                continue;
-            }
-            for (k, &c) in ring_corner[first..].iter().enumerate() {
-                ring_id[mesh.v[prev3(c) as usize] as usize] = (first + k) as u32;
-            }
-            starts.push(ring_corner.len() as u32);
-        }
+    /// The LR of `ct` with the rings `rings` of its closed mesh `prepared`.
+    pub(super) fn from_rings(ct: &CornerTable, prepared: &Prepared, rings: Rings) -> Result<Lr> {
+        let mesh = &prepared.mesh;
+        let real_vertices = mesh.real_vertices;
+        let Rings {
+            ring_corner,
+            starts,
+            ring_id,
+            ..
+        } = rings;
         let m_r = ring_corner.len() as u32;
         if (m_r as u64) * 8 + 4 * (mesh.real_triangles as u64) >= NONE as u64 {
             return Err(Error::Unsupported(

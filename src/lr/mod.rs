@@ -43,6 +43,7 @@
 
 mod build;
 pub mod compact;
+mod ring;
 mod tables;
 
 pub use compact::{CompactLr, CompactOptions, CompactStats, CompactTables};

@@ -1,7 +1,8 @@
-//! Construction of the bit-efficient LR from standard LRs: [`CompactLr::build`] tries each
-//! HYBRID-RING-EXPANDER period and keeps the smallest encoding; the encoder lays out the pair
-//! words, records, blocks and T0 rows (ordered by [`t0_order`]), then checks that the result
-//! answers every corner operator exactly as the standard LR does.
+//! Construction of the bit-efficient LR from a standard LR: [`CompactLr::build`] picks the
+//! HYBRID-RING-EXPANDER period whose rings promise the smallest encoding ([`choose_period`])
+//! and builds the LR once with it; the encoder lays out the pair words, records, blocks and
+//! T0 rows (ordered by [`t0_order`]), then checks that the result answers every corner
+//! operator exactly as the standard LR does.
 
 use super::tables::CompactTables;
 use super::{
@@ -13,35 +14,24 @@ use super::{
 use crate::corner_table::{CornerTable, NONE};
 use crate::error::{Error, Result};
 use crate::ids::Corner;
+use crate::lr::ring::Prepared;
 use crate::lr::tables::{LrLayout, LrTables, LEFT, NULL, RIGHT};
 use crate::lr::Lr;
 use crate::ops::CornerOps;
 use crate::words::{Units, Words};
 
 impl CompactLr {
-    /// Builds the bit-efficient LR: one standard LR per period of `options`, each encoded;
-    /// the smallest is kept.
+    /// Builds the bit-efficient LR with the period of `options` whose rings promise the
+    /// smallest encoding ([`choose_period`]).
     ///
     /// # Errors
     /// [`Error::Unsupported`] when the mesh exceeds the LR's id space.
     pub fn build(ct: &CornerTable, options: &CompactOptions) -> Result<CompactLr> {
-        let mut best: Option<CompactLr> = None;
-        let periods: &[u32] = if options.periods.is_empty() {
-            &[0]
-        } else {
-            &options.periods
-        };
-        for &period in periods {
-            let lr = Lr::build_with_period(ct, &options.lr, period)?;
-            let candidate = CompactLr::encode(lr, period)?;
-            if best
-                .as_ref()
-                .is_none_or(|b| candidate.stored_bytes() < b.stored_bytes())
-            {
-                best = Some(candidate);
-            }
-        }
-        Ok(best.expect("at least one period"))
+        let prepared = Prepared::new(ct)?;
+        let period = choose_period(&prepared, &options.periods, options.lr.seed);
+        let rings = prepared.rings(period, options.lr.tries, options.lr.seed);
+        let lr = Lr::from_rings(ct, &prepared, rings)?;
+        CompactLr::encode(lr, period)
     }
 
     /// Encodes a standard LR built with period `period`.
@@ -416,4 +406,22 @@ fn short_corner(c: u32, ring_reference: u32, t0_reference: u32, m_r: u32) -> Opt
     (-SHORT_MAX..=SHORT_MAX)
         .contains(&d)
         .then_some(tag | (d as u16 & 0x7FFF))
+}
+
+/// The period of `periods` (0 when there is none) whose rings, from one seed corner per
+/// component, have the smallest [`compact_estimate`](Prepared::compact_estimate):
+/// one ring expansion per period instead of a whole LR built and encoded per period, whose
+/// sizes it ranks closely enough (README, bit-efficient LR).
+fn choose_period(prepared: &Prepared, periods: &[u32], seed: u64) -> u32 {
+    let mut best = (u64::MAX, periods.first().copied().unwrap_or(0));
+    if periods.len() < 2 {
+        return best.1;
+    }
+    for &period in periods {
+        let estimate = prepared.compact_estimate(period, seed);
+        if estimate < best.0 {
+            best = (estimate, period);
+        }
+    }
+    best.1
 }

@@ -81,15 +81,15 @@ const TAG_T0: u16 = 0x8000;
 /// The 15-bit pattern of a long corner field (tag 0) or of `NONE` (tag 1).
 const ESCAPE: u16 = 0x4000;
 /// The largest difference a 15-bit field holds.
-const SHORT_MAX: i64 = 0x3FFF;
+pub(super) const SHORT_MAX: i64 = 0x3FFF;
 
 /// Options of the bit-efficient LR construction.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct CompactOptions {
     /// Options of each LR construction (seeds and tries).
     pub lr: LrOptions,
-    /// Periods `k` of HYBRID-RING-EXPANDER to try (0: depth-first RING-EXPANDER); the
-    /// smallest result is kept, as the paper chose `k` per mesh.
+    /// Periods `k` of HYBRID-RING-EXPANDER to choose from (0: depth-first RING-EXPANDER),
+    /// as the paper chose `k` per mesh: the one whose rings promise the smallest encoding.
     pub periods: Vec<u32>,
 }
 
@@ -97,7 +97,9 @@ impl Default for CompactOptions {
     fn default() -> Self {
         CompactOptions {
             lr: LrOptions::default(),
-            periods: vec![0, 16, 32, 64, 128, 256, 512, 1024],
+            // Longer periods behave like depth first and were never the smallest on the
+            // shared meshes (with 256, 512 and 1024 too, the same sizes were chosen).
+            periods: vec![0, 16, 32, 64, 128],
         }
     }
 }

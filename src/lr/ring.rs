@@ -1,0 +1,462 @@
+//! The rings of an LR construction: the corner table closed by dummy vertices over its
+//! boundaries, RING-EXPANDER (or HYBRID-RING-EXPANDER) per component from the best of
+//! several seed corners, and the walk that numbers the ring vertices. [`Prepared`] holds
+//! what every ring of one corner table shares, so that the bit-efficient LR can compare
+//! periods without closing the mesh again.
+
+use super::compact::SHORT_MAX;
+use super::NULL;
+use crate::corner_table::{CornerTable, NONE};
+use crate::error::{Error, Result};
+use crate::ops::CornerOps;
+use crate::rng::Rng;
+
+/// The corner table closed by dummy vertices and triangles over each boundary loop.
+pub(super) struct Closed {
+    pub(super) v: Vec<u32>,
+    pub(super) o: Vec<u32>,
+    pub(super) real_triangles: u32,
+    pub(super) real_vertices: u32,
+    /// Real and dummy vertices.
+    total_vertices: u32,
+}
+
+pub(super) fn next3(c: u32) -> u32 {
+    if c % 3 == 2 {
+        c - 2
+    } else {
+        c + 1
+    }
+}
+
+pub(super) fn prev3(c: u32) -> u32 {
+    if c % 3 == 0 {
+        c + 2
+    } else {
+        c - 1
+    }
+}
+
+impl Closed {
+    /// Adds, for every boundary half-edge `a -> b` (facing corner `c`), a dummy triangle
+    /// `(b, a, d)` where `d` is the dummy vertex of that boundary loop.
+    fn new(ct: &CornerTable) -> Result<Closed> {
+        let mut v = ct.v_table().to_vec();
+        let mut o = ct.o_table().to_vec();
+        let real_triangles = (v.len() / 3) as u32;
+        let real_vertices = ct.vertex_id_bound();
+        // The boundary half-edge arriving at each vertex (one at most: one fan per vertex).
+        let mut incoming = vec![NONE; real_vertices as usize];
+        let boundary: Vec<u32> = (0..v.len() as u32)
+            .filter(|&c| o[c as usize] == NONE)
+            .collect();
+        for &c in &boundary {
+            incoming[v[prev3(c) as usize] as usize] = c;
+        }
+        // Dummy triangle of boundary corner c, by the order of `boundary`.
+        let mut dummy_of = vec![NONE; v.len()];
+        for (k, &c) in boundary.iter().enumerate() {
+            dummy_of[c as usize] = real_triangles + k as u32;
+        }
+        let total = v.len() + 3 * boundary.len();
+        if total >= (NONE / 2) as usize {
+            return Err(Error::Unsupported("mesh too large for LR".into()));
+        }
+        v.resize(total, NONE);
+        o.resize(total, NONE);
+        let mut next_dummy_vertex = real_vertices;
+        for &c in &boundary {
+            let t = dummy_of[c as usize];
+            let (a, b) = (v[next3(c) as usize], v[prev3(c) as usize]);
+            let base = 3 * t as usize;
+            v[base] = b;
+            v[base + 1] = a;
+            o[base + 2] = c;
+            o[c as usize] = base as u32 + 2;
+            // Corner 0 (at b) faces a -> d: the dummy of the boundary half-edge into a.
+            let before = dummy_of[incoming[a as usize] as usize];
+            o[base] = 3 * before + 1;
+            o[3 * before as usize + 1] = base as u32;
+        }
+        // One dummy vertex per loop: walk the loop through the corner-0/corner-1 links.
+        for &c in &boundary {
+            let t = dummy_of[c as usize] as usize;
+            if v[3 * t + 2] != NONE {
+                continue;
+            }
+            let d = next_dummy_vertex;
+            next_dummy_vertex += 1;
+            let mut u = t;
+            while v[3 * u + 2] == NONE {
+                v[3 * u + 2] = d;
+                u = o[3 * u] as usize / 3;
+            }
+        }
+        Ok(Closed {
+            v,
+            o,
+            real_triangles,
+            real_vertices,
+            total_vertices: next_dummy_vertex,
+        })
+    }
+
+    #[inline]
+    fn right(&self, c: u32) -> u32 {
+        self.o[prev3(c) as usize]
+    }
+}
+
+/// RING-EXPANDER (section 4.2) from seed corner `s`: marks invaded triangles and visited
+/// vertices. Dummy vertices must already be marked visited.
+fn ring_expander(mesh: &Closed, s: u32, vm: &mut [bool], tm: &mut [bool]) {
+    let v = &mesh.v;
+    vm[v[next3(s) as usize] as usize] = true;
+    vm[v[prev3(s) as usize] as usize] = true;
+    let stop = mesh.o[s as usize];
+    let mut c = s;
+    loop {
+        if !vm[v[c as usize] as usize] {
+            vm[v[c as usize] as usize] = true;
+            tm[c as usize / 3] = true;
+        } else if !tm[c as usize / 3] {
+            c = mesh.o[c as usize];
+        }
+        c = mesh.right(c);
+        if c == stop {
+            break;
+        }
+    }
+}
+
+/// HYBRID-RING-EXPANDER (section 6.1) with period `period`: the invasion proceeds depth
+/// first from a double-ended queue of candidate corners, but after every `period`-th invaded
+/// triangle it resumes from the oldest candidate (breadth first), which bounds the length of
+/// the corridors and so the ring offsets `v.l - v` and `v.r - v`. `period = 1` is breadth
+/// first. Dummy vertices must already be marked visited.
+fn hybrid_ring_expander(
+    mesh: &Closed,
+    s: u32,
+    period: u32,
+    vm: &mut [bool],
+    tm: &mut [bool],
+    deque: &mut std::collections::VecDeque<u32>,
+) {
+    let v = &mesh.v;
+    vm[v[next3(s) as usize] as usize] = true;
+    vm[v[prev3(s) as usize] as usize] = true;
+    deque.clear();
+    let mut invaded = 0u32;
+    let mut c = s;
+    loop {
+        if !vm[v[c as usize] as usize] {
+            vm[v[c as usize] as usize] = true;
+            tm[c as usize / 3] = true;
+            // c.l and c.r: the corners facing the two edges the invasion exposed.
+            deque.push_back(mesh.o[next3(c) as usize]);
+            deque.push_back(mesh.o[prev3(c) as usize]);
+            invaded = (invaded + 1) % period;
+        }
+        let candidate = if invaded == 0 {
+            deque.pop_front()
+        } else {
+            deque.pop_back()
+        };
+        match candidate {
+            Some(next) => c = next,
+            None => break,
+        }
+    }
+}
+
+/// Per-component work lists of the closed mesh.
+struct Component {
+    /// Real and dummy triangles.
+    triangles: Vec<u32>,
+    /// Real triangles only: the seeds are drawn from these.
+    real_triangles: Vec<u32>,
+    /// Real vertices.
+    vertices: Vec<u32>,
+}
+
+fn components(mesh: &Closed) -> Vec<Component> {
+    let nt = mesh.v.len() / 3;
+    let mut seen = vec![false; nt];
+    let mut vertex_seen = vec![false; mesh.real_vertices as usize];
+    let mut out = Vec::new();
+    let mut stack = Vec::new();
+    for start in 0..mesh.real_triangles {
+        if seen[start as usize] {
+            continue;
+        }
+        let mut comp = Component {
+            triangles: Vec::new(),
+            real_triangles: Vec::new(),
+            vertices: Vec::new(),
+        };
+        seen[start as usize] = true;
+        stack.push(start);
+        while let Some(t) = stack.pop() {
+            comp.triangles.push(t);
+            if t < mesh.real_triangles {
+                comp.real_triangles.push(t);
+            }
+            for i in 0..3 {
+                let c = 3 * t as usize + i;
+                let x = mesh.v[c];
+                if x < mesh.real_vertices && !vertex_seen[x as usize] {
+                    vertex_seen[x as usize] = true;
+                    comp.vertices.push(x);
+                }
+                let u = mesh.o[c] / 3;
+                if !seen[u as usize] {
+                    seen[u as usize] = true;
+                    stack.push(u);
+                }
+            }
+        }
+        out.push(comp);
+    }
+    out
+}
+
+/// Ring edges of real triangle `t`: edges to a neighbour on the other side of the ring.
+fn ring_edges(mesh: &Closed, tm: &[bool], t: u32) -> usize {
+    let inside = tm[t as usize];
+    (0..3)
+        .filter(|&i| tm[mesh.o[3 * t as usize + i] as usize / 3] != inside)
+        .count()
+}
+
+/// T0 triangles of a component that no wart can take: those without a T2 neighbour. (A T2 has
+/// one edge off the ring, so no two T0s compete for it, and every other T0 finds a wart.)
+fn t0_after_warts(mesh: &Closed, comp: &Component, tm: &[bool]) -> usize {
+    comp.real_triangles
+        .iter()
+        .filter(|&&t| {
+            ring_edges(mesh, tm, t) == 0
+                && (0..3).all(|i| {
+                    let u = mesh.o[3 * t as usize + i] / 3;
+                    u >= mesh.real_triangles || ring_edges(mesh, tm, u) != 2
+                })
+        })
+        .count()
+}
+
+fn reset(comp: &Component, vm: &mut [bool], tm: &mut [bool]) {
+    for &x in &comp.vertices {
+        vm[x as usize] = false;
+    }
+    for &t in &comp.triangles {
+        tm[t as usize] = false;
+    }
+}
+
+/// What every ring construction of one corner table shares: the closed mesh and its
+/// components.
+pub(super) struct Prepared {
+    pub(super) mesh: Closed,
+    components: Vec<Component>,
+}
+
+/// The walked rings of every component.
+pub(super) struct Rings {
+    /// Per ring vertex, in ring order: the tip corner of its left slot.
+    pub(super) ring_corner: Vec<u32>,
+    /// Where each ring starts in `ring_corner`, then its length.
+    pub(super) starts: Vec<u32>,
+    /// Per real vertex: its ring position, `NONE` off the rings.
+    pub(super) ring_id: Vec<u32>,
+}
+
+impl Prepared {
+    /// Closes `ct` and finds its components.
+    ///
+    /// # Errors
+    /// [`Error::Unsupported`] when the mesh exceeds the LR's vertex ids.
+    pub(super) fn new(ct: &CornerTable) -> Result<Prepared> {
+        let mesh = Closed::new(ct)?;
+        if mesh.real_vertices >= NULL {
+            return Err(Error::Unsupported(
+                "LR holds at most 2^30 - 2 vertices".into(),
+            ));
+        }
+        let components = components(&mesh);
+        Ok(Prepared { mesh, components })
+    }
+
+    /// The rings by RING-EXPANDER (`period` 0) or HYBRID-RING-EXPANDER of `period`: per
+    /// component the best of `tries` seed corners drawn from `seed`
+    /// ([`Expansion::best_of`]), walked to number its vertices.
+    pub(super) fn rings(&self, period: u32, tries: u32, seed: u64) -> Rings {
+        let mut expansion = Expansion::new(&self.mesh, period, seed);
+        let mut rings = Rings::new(&self.mesh);
+        for comp in &self.components {
+            expansion.best_of(comp, tries);
+            rings.walk(&self.mesh, comp, &expansion.tm);
+        }
+        rings
+    }
+
+    /// A guess, from one ring expansion per component (the first seed corner of
+    /// [`Prepared::rings`]), of what the rings of `period` cost a bit-efficient LR beyond its
+    /// pair words, in bytes: a T0 row and the records of its irregular neighbours for each
+    /// T0 triangle no wart takes, and a record for each pair with a tip too far for a plain
+    /// pair's offset (only a component of more vertices than that offset reaches has one, so
+    /// only such a component's ring is walked). The factors are least-squares fits of the
+    /// built sizes over the shared meshes and periods; `lr::compact` ranks periods by it.
+    pub(super) fn compact_estimate(&self, period: u32, seed: u64) -> u64 {
+        let mesh = &self.mesh;
+        let mut expansion = Expansion::new(mesh, period, seed);
+        let mut rings = Rings::new(mesh);
+        let mut bytes = 0;
+        for comp in &self.components {
+            let t0 = expansion.best_of(comp, 1);
+            bytes += T0_BYTES * t0 as u64;
+            if comp.vertices.len() as i64 > SHORT_MAX {
+                let first = rings.ring_corner.len();
+                rings.walk(mesh, comp, &expansion.tm);
+                bytes += LONG_PAIR_BYTES * rings.long_pairs(mesh, first);
+            }
+        }
+        bytes
+    }
+}
+
+/// Estimated bytes of a pair whose tip is too far for a plain pair ([`Prepared::compact_estimate`]).
+const LONG_PAIR_BYTES: u64 = 10;
+/// Estimated bytes of a T0 triangle: its row and its neighbours' records.
+const T0_BYTES: u64 = 26;
+
+/// The state of the ring expansions of one period, component after component.
+struct Expansion<'m> {
+    mesh: &'m Closed,
+    period: u32,
+    rng: Rng,
+    deque: std::collections::VecDeque<u32>,
+    /// Visited vertices (dummies always) and invaded triangles.
+    vm: Vec<bool>,
+    tm: Vec<bool>,
+}
+
+impl<'m> Expansion<'m> {
+    fn new(mesh: &'m Closed, period: u32, seed: u64) -> Expansion<'m> {
+        let mut vm = vec![false; mesh.total_vertices as usize];
+        vm[mesh.real_vertices as usize..].fill(true);
+        Expansion {
+            mesh,
+            period,
+            rng: Rng::new(seed),
+            deque: std::collections::VecDeque::new(),
+            vm,
+            tm: vec![false; mesh.v.len() / 3],
+        }
+    }
+
+    fn expand(&mut self, comp: &Component, s: u32) {
+        reset(comp, &mut self.vm, &mut self.tm);
+        if self.period == 0 {
+            ring_expander(self.mesh, s, &mut self.vm, &mut self.tm)
+        } else {
+            let (vm, tm, deque) = (&mut self.vm, &mut self.tm, &mut self.deque);
+            hybrid_ring_expander(self.mesh, s, self.period, vm, tm, deque)
+        }
+    }
+
+    /// Expands `comp` from `tries` seed corners and keeps the best (fewest isolated
+    /// vertices, then fewest T0 triangles left after wart skipping, each of which costs its
+    /// own six references and makes its neighbours irregular) in `tm`; returns its T0 count.
+    fn best_of(&mut self, comp: &Component, tries: u32) -> usize {
+        let mut best: Option<((usize, usize), u32)> = None;
+        let mut best_is_last = false;
+        for _ in 0..tries.max(1) {
+            let t = comp.real_triangles[self.rng.below(comp.real_triangles.len() as u32) as usize];
+            let s = 3 * t + self.rng.below(3);
+            self.expand(comp, s);
+            // One try needs no comparison, hence no count of isolated vertices.
+            let isolated = match tries {
+                0 | 1 => 0,
+                _ => comp
+                    .vertices
+                    .iter()
+                    .filter(|&&x| !self.vm[x as usize])
+                    .count(),
+            };
+            let t0 = t0_after_warts(self.mesh, comp, &self.tm);
+            best_is_last = best.is_none_or(|(b, _)| (isolated, t0) < b);
+            if best_is_last {
+                best = Some(((isolated, t0), s));
+            }
+        }
+        let ((_, t0), s) = best.expect("at least one try");
+        if !best_is_last {
+            self.expand(comp, s);
+        }
+        t0
+    }
+}
+
+impl Rings {
+    fn new(mesh: &Closed) -> Rings {
+        Rings {
+            ring_corner: Vec::new(),
+            starts: vec![0u32],
+            ring_id: vec![NONE; mesh.real_vertices as usize],
+        }
+    }
+
+    /// Walks the ring of `comp`'s invaded triangles `tm`, numbering its vertices; a ring of
+    /// three adds nothing (the component stays T0 triangles and isolated vertices).
+    fn walk(&mut self, mesh: &Closed, comp: &Component, tm: &[bool]) {
+        // A corner of an invaded triangle facing a non-invaded one starts the walk.
+        let start = comp
+            .triangles
+            .iter()
+            .filter(|&&t| tm[t as usize])
+            .flat_map(|&t| 3 * t..3 * t + 3)
+            .find(|&c| !tm[mesh.o[c as usize] as usize / 3])
+            .expect("an invaded region has a boundary");
+        let first = self.ring_corner.len();
+        let mut c = start;
+        loop {
+            self.ring_corner.push(c);
+            // Rotate around the far vertex through invaded triangles to the next ring edge.
+            let mut k = prev3(c);
+            while tm[mesh.o[k as usize] as usize / 3] {
+                k = prev3(mesh.o[k as usize]);
+            }
+            c = k;
+            if c == start {
+                break;
+            }
+        }
+        if self.ring_corner.len() - first == 3 {
+            self.ring_corner.truncate(first);
+            return;
+        }
+        for (k, &c) in self.ring_corner[first..].iter().enumerate() {
+            self.ring_id[mesh.v[prev3(c) as usize] as usize] = (first + k) as u32;
+        }
+        self.starts.push(self.ring_corner.len() as u32);
+    }
+
+    /// Pairs of the ring vertices from position `first` on with a tip too far for a plain
+    /// pair's offset, or off the rings ([`Prepared::compact_estimate`]).
+    fn long_pairs(&self, mesh: &Closed, first: usize) -> u64 {
+        let far = |v: usize, tip: u32| {
+            if tip >= mesh.real_vertices {
+                return false; // a dummy: NULL
+            }
+            match self.ring_id[tip as usize] {
+                NONE => true,
+                r => (r as i64 - v as i64).abs() > SHORT_MAX,
+            }
+        };
+        let corners = self.ring_corner.iter().enumerate().skip(first);
+        corners
+            .filter(|&(v, &c)| {
+                far(v, mesh.v[c as usize]) || far(v, mesh.v[mesh.o[c as usize] as usize])
+            })
+            .count() as u64
+    }
+}
