@@ -449,3 +449,9 @@ pub mod perm {
     /// Bytes before the permutations.
     pub const HEADER_LEN: usize = 8;
 }
+
+/// `FLIP` (§3.11): u32 `F`, then `F` u32.
+pub mod flip {
+    /// Bytes before the triangle indices.
+    pub const HEADER_LEN: usize = 4;
+}

@@ -24,7 +24,7 @@ pub const MAGIC: [u8; 8] = [0x89, b'L', b'R', b'M', b'\r', b'\n', 0x1a, b'\n'];
 /// Major version written and read. A reader rejects any other major version.
 pub const MAJOR: u16 = 1;
 /// Newest minor version written. Readers accept any minor version of their major version.
-pub const MINOR: u16 = 4;
+pub const MINOR: u16 = 5;
 
 /// The minor version a file of these sections (tags and payloads) is written with: 3 with
 /// `PART` labels coded, normals predicted from their neighbours only or `COPC`; 2 with a
@@ -48,6 +48,7 @@ pub fn minor_for<'a>(sections: impl IntoIterator<Item = (Tag, &'a [u8])>) -> u16
             // The LR flags word (FORMAT.md §3.5 and §3.5d).
             Tag::LRTB if bytes.len() >= 24 && le_u32(bytes, 20) != 0 => 4,
             Tag::LRBE if bytes.len() >= 32 && le_u32(bytes, 28) != 0 => 4,
+            Tag::FLIP => 5,
             Tag::KEPC => 2,
             Tag::PART => 1,
             _ => 0,
@@ -264,9 +265,11 @@ impl Tag {
     pub const KEPC: Tag = Tag(*b"KEPC");
     /// Vertex copies, range coded (Edgebreaker containers, version 1.3).
     pub const COPC: Tag = Tag(*b"COPC");
+    /// Triangles the writer reversed to make the orientation consistent (version 1.5).
+    pub const FLIP: Tag = Tag(*b"FLIP");
 
     /// The sections a version-1 reader understands.
-    pub const KNOWN: [Tag; 17] = [
+    pub const KNOWN: [Tag; 18] = [
         Tag::META,
         Tag::MESH,
         Tag::GEOM,
@@ -282,6 +285,7 @@ impl Tag {
         Tag::KEPT,
         Tag::KEPC,
         Tag::PERM,
+        Tag::FLIP,
         Tag::ATTR,
         Tag::PART,
     ];

@@ -1,10 +1,12 @@
 //! The indexed triangle mesh that every importer produces and every representation starts from.
 
 mod attribute;
+mod orient;
 mod parts;
 pub(crate) mod seams;
 
 pub use attribute::{Attribute, ComponentType, Semantic, Values};
+pub use orient::{orient, reversed, Oriented};
 pub use parts::{Part, Parts};
 
 use crate::error::{Error, Result};

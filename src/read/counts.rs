@@ -268,6 +268,34 @@ pub(super) fn perm<'a>(
     Ok(Some((vertices, triangles)))
 }
 
+/// The reversed triangles of `FLIP`, if present, among `t` output triangles ([V54]):
+/// strictly increasing indices below `t`.
+pub(super) fn flips<'a>(sections: &Sections<'a>, t: u64) -> Result<Option<LeWords<'a>>> {
+    let Some(section) = sections.section(Tag::FLIP) else {
+        return Ok(None);
+    };
+    let f = Fields::new(*section);
+    let rule = Rule(54);
+    let count = f.u32(0, rule)?;
+    let at = layout::flip::HEADER_LEN;
+    f.expect_len(Some(at as u64 + 4 * count as u64), rule)?;
+    let words = LeWords(&section.bytes[at..]);
+    let mut floor = 0u64;
+    for i in 0..words.count() {
+        let j = words.at(i) as u64;
+        if j < floor || j >= t {
+            let why = if j >= t {
+                format!("triangle {j} reversed, the mesh has {t}")
+            } else {
+                format!("triangle {j} after triangle {}: not increasing", floor - 1)
+            };
+            return Err(f.err(at + 4 * i, rule, why));
+        }
+        floor = j + 1;
+    }
+    Ok(Some(words))
+}
+
 fn check_permutation(f: &Fields, at: usize, words: LeWords) -> Result<()> {
     let n = words.count();
     let mut seen = vec![false; n];

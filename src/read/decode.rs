@@ -113,10 +113,27 @@ impl Container<'_> {
             attributes,
             parts,
         };
+        if let Some(flips) = self.flips {
+            let flipped: Vec<usize> = (0..flips.count()).map(|i| flips.at(i) as usize).collect();
+            unflip(&mut mesh, &flipped);
+        }
         if let Some((vertices, tris)) = self.perm {
             mesh = reorder(mesh, vertices, tris);
         }
         mesh
+    }
+}
+
+/// Reverses the output triangles `flipped` back to the input's orientation (FORMAT.md §4
+/// step 4): `[a, b, c]` becomes `[a, c, b]`, per-corner values following their corners.
+fn unflip(mesh: &mut Mesh, flipped: &[usize]) {
+    for &t in flipped {
+        mesh.triangles[t].swap(1, 2);
+        for a in &mut mesh.attributes {
+            if let Some(corners) = &mut a.corners {
+                corners.swap(3 * t + 1, 3 * t + 2);
+            }
+        }
     }
 }
 

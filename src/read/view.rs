@@ -157,6 +157,8 @@ pub struct Container<'a> {
     pub(super) kept: Stored<'a>,
     /// Vertex then triangle permutations to the input order.
     pub(super) perm: Option<(LeWords<'a>, LeWords<'a>)>,
+    /// Output triangles the writer reversed (`FLIP`), increasing.
+    pub(super) flips: Option<LeWords<'a>>,
     pub(super) output_vertices: u32,
     pub(super) triangles: u32,
 }
@@ -272,6 +274,7 @@ impl<'a> Container<'a> {
         }
         let total = mesh.triangles as u64 + mesh.kept as u64;
         let perm = counts::perm(&sections, mesh.output_vertices, total)?;
+        let flips = counts::flips(&sections, total)?;
         let cx = attributes::Context {
             vertices: m,
             connectivity: &connectivity,
@@ -296,6 +299,7 @@ impl<'a> Container<'a> {
             copies,
             kept,
             perm,
+            flips,
             output_vertices: mesh.output_vertices,
             triangles: mesh.triangles,
         })

@@ -36,6 +36,22 @@ pub enum Connectivity {
     LrCompact,
 }
 
+/// Whether the writer makes the triangles' orientation consistent first (`lrmesh encode
+/// --orient`): an edge two triangles use in the same direction cuts the surface there, so
+/// a mesh with mixed orientations costs every representation more.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Orient {
+    /// The triangles as given.
+    #[default]
+    AsGiven,
+    /// Reverse triangles as [`crate::mesh::orient`] says, and record them in section `FLIP`
+    /// so that decoding gives back the input's triangles; the corner operators answer on
+    /// the repaired surface.
+    Repair,
+    /// The same without `FLIP`: decoding gives the repaired triangles.
+    RepairAndKeep,
+}
+
 /// The compression level of [`EncodeOptions::default`].
 pub const DEFAULT_LEVEL: u8 = 6;
 
@@ -53,6 +69,8 @@ pub struct EncodeOptions {
     pub strips: StripOptions,
     /// Store the permutations back to the input's vertex and triangle order.
     pub keep_order: bool,
+    /// Make the orientation consistent first ([`Orient`]).
+    pub orient: Orient,
     /// Positions on a grid of this many bits per coordinate (1 to 30) in their bounding box,
     /// within half a step of their value (lossy); `None` keeps the f32s exactly.
     pub position_bits: Option<u8>,
@@ -81,6 +99,7 @@ impl Default for EncodeOptions {
             periods: CompactOptions::default().periods,
             strips: StripOptions::default(),
             keep_order: false,
+            orient: Orient::AsGiven,
             position_bits: None,
             level: DEFAULT_LEVEL,
             normal_bits: None,
@@ -140,8 +159,31 @@ pub enum Built<'a> {
 /// [`Error::Unsupported`] when it exceeds the representation's limits.
 pub fn encode(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<u8>> {
     mesh.validate()?;
+    let oriented = oriented(mesh, options);
+    let (mesh, flipped) = as_encoded(mesh, &oriented, options);
     let table = CornerTable::from_mesh(mesh)?;
-    Ok(assemble(&sections(mesh, Built::Table(&table), options)?))
+    Ok(assemble(&sections(mesh, Built::Table(&table), options, flipped)?))
+}
+
+/// The mesh oriented as `options` ask, if they do.
+fn oriented(mesh: &Mesh, options: &EncodeOptions) -> Option<crate::mesh::Oriented> {
+    (options.orient != Orient::AsGiven).then(|| crate::mesh::orient(mesh))
+}
+
+/// The mesh to encode (`mesh`, or its oriented copy) and the triangles to record in
+/// `FLIP`, if any.
+fn as_encoded<'m>(
+    mesh: &'m Mesh,
+    oriented: &'m Option<crate::mesh::Oriented>,
+    options: &EncodeOptions,
+) -> (&'m Mesh, Option<&'m [bool]>) {
+    match oriented {
+        Some(o) => {
+            let record = options.orient == Orient::Repair && o.flipped_count() > 0;
+            (&o.mesh, record.then_some(o.flipped.as_slice()))
+        }
+        None => (mesh, None),
+    }
 }
 
 /// Encodes `mesh` into `out` (a file, a socket, a buffer), as [`encode`].
@@ -154,8 +196,10 @@ pub fn encode_to(
     options: &EncodeOptions,
 ) -> Result<()> {
     mesh.validate()?;
+    let oriented = oriented(mesh, options);
+    let (mesh, flipped) = as_encoded(mesh, &oriented, options);
     let table = CornerTable::from_mesh(mesh)?;
-    let sections = sections(mesh, Built::Table(&table), options)?;
+    let sections = sections(mesh, Built::Table(&table), options, flipped)?;
     write_sections(out, &sections).map_err(|source| Error::Io {
         path: Default::default(),
         source,
@@ -169,10 +213,17 @@ pub fn encode_to(
 ///
 /// # Errors
 /// As [`encode`]; [`Error::InvalidArgument`] when `built` does not have the mesh's vertex
-/// and triangle counts.
+/// and triangle counts, or when `options` ask to orient (the connectivity is built already:
+/// orient the mesh first with [`crate::mesh::orient`]).
 pub fn encode_built(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<u8>> {
     mesh.validate()?;
-    Ok(assemble(&sections(mesh, built, options)?))
+    if options.orient != Orient::AsGiven {
+        return Err(Error::InvalidArgument(
+            "a connectivity built already cannot be oriented: orient the mesh before building"
+                .into(),
+        ));
+    }
+    Ok(assemble(&sections(mesh, built, options, None)?))
 }
 
 /// The connectivity section of `built`.
@@ -205,8 +256,14 @@ fn connectivity(
     })
 }
 
-/// Every section of the container, in the order this crate writes them.
-fn sections(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<SectionBytes>> {
+/// Every section of the container, in the order this crate writes them; with `flipped`
+/// (per input triangle), the reversed ones in `FLIP`.
+fn sections(
+    mesh: &Mesh,
+    built: Built,
+    options: &EncodeOptions,
+    flipped: Option<&[bool]>,
+) -> Result<Vec<SectionBytes>> {
     let kept = match built {
         Built::Table(t) => t.kept_aside(),
         Built::Lr(lr) => lr.kept_aside(),
@@ -346,6 +403,20 @@ fn sections(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<Se
         let kept_inputs: Vec<u32> = kept.iter().map(|&(input, _)| input).collect();
         write_fields(&mut p, &kept_inputs);
         sections.push((Tag::PERM, Flags::NONE, p));
+    }
+    if let Some(flipped) = flipped {
+        // Output triangles (FORMAT.md §4 step 2, before PERM): the connectivity's, then kept.
+        let inputs = encoded.input_triangle.iter().copied();
+        let inputs = inputs.chain(kept.iter().map(|&(input, _)| input));
+        let reversed: Vec<u32> = (0u32..)
+            .zip(inputs)
+            .filter(|&(_, input)| flipped[input as usize])
+            .map(|(j, _)| j)
+            .collect();
+        let mut p = Vec::new();
+        write_fields(&mut p, &[reversed.len() as u32]);
+        write_fields(&mut p, &reversed);
+        sections.push((Tag::FLIP, Flags::REQUIRED, p));
     }
     Ok(sections)
 }
