@@ -232,6 +232,45 @@ fn v26_triangle_count_located() {
     breaks(&bad, 26, "PERM", section_at(&bytes, Tag::PERM) + 4, "");
 }
 
+/// [V54] `FLIP`: length `4 + 4F`; the reversed output triangles strictly increasing, each
+/// below `N + K`.
+#[test]
+fn v54_reversed_triangles() {
+    let bytes = vector("misoriented_cube.lrm"); // N + K = 12; FLIP 2 3 5 10 11
+    let at = section_at(&bytes, Tag::FLIP);
+    assert_eq!(payload(&bytes, Tag::FLIP), {
+        let mut p = Vec::new();
+        for x in [5u32, 2, 3, 5, 10, 11] {
+            p.extend(x.to_le_bytes());
+        }
+        p
+    });
+    let word = |f: usize, x: u32| forge(&bytes, Tag::FLIP, |p| put(p, f, x));
+    breaks(&word(0, 6), 54, "FLIP", at, "");
+    breaks(&word(0, 4), 54, "FLIP", at, "");
+    let longer = forge(&bytes, Tag::FLIP, |p| p.extend([0; 4]));
+    breaks(&longer, 54, "FLIP", at, "");
+    // Out of range, a repeat, a decrease.
+    breaks(&word(20, 12), 54, "FLIP", at + 20, "the mesh has 12");
+    breaks(&word(8, 2), 54, "FLIP", at + 8, "not increasing");
+    breaks(&word(12, 1), 54, "FLIP", at + 12, "not increasing");
+    // None is valid, and then nothing is reversed.
+    let none = forge(&bytes, Tag::FLIP, |p| p.truncate(0));
+    let none = forge(&none, Tag::FLIP, |p| p.extend(0u32.to_le_bytes()));
+    let limits = lrmesh::read::Limits::default();
+    let reversed = lrmesh::read::open_verified(&bytes, &limits)
+        .unwrap()
+        .to_mesh();
+    let as_stored = lrmesh::read::open_verified(&none, &limits)
+        .unwrap()
+        .to_mesh();
+    let differ = (reversed.triangles.iter())
+        .zip(&as_stored.triangles)
+        .filter(|(a, b)| a != b)
+        .count();
+    assert_eq!(differ, 5);
+}
+
 /// [V39] `MESH`, `GEOM` and the connectivity section of MESH's kind are present, checked
 /// when first needed.
 #[test]

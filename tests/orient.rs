@@ -84,7 +84,10 @@ fn the_shuffled_mesh_is_repaired() {
     let lr = Lr::build(&table, &LrOptions::default()).unwrap();
     let key = |c| {
         use lrmesh::CornerOps;
-        (lr.input_triangle(lr.triangle(c)), lr.input_vertex(lr.vertex(c)))
+        (
+            lr.input_triangle(lr.triangle(c)),
+            lr.input_vertex(lr.vertex(c)),
+        )
     };
     let position = |v: lrmesh::Vertex| o.mesh.positions[lr.input_vertex(v) as usize];
     check_against_table(&lr, key, position, &table, &o.mesh);
@@ -141,9 +144,7 @@ fn per_corner_values_come_back_at_their_corners() {
     });
     for connectivity in KINDS {
         let bytes = encode(&mesh, &options(connectivity, true, Orient::Repair)).unwrap();
-        let back = open_verified(&bytes, &Limits::default())
-            .unwrap()
-            .to_mesh();
+        let back = open_verified(&bytes, &Limits::default()).unwrap().to_mesh();
         let a = &back.attributes[0];
         let Values::U32(values) = &a.values else {
             panic!("u32 values")
@@ -153,7 +154,11 @@ fn per_corner_values_come_back_at_their_corners() {
             for k in 0..3 {
                 let value = values[corners[3 * t + k] as usize];
                 let input_corner = want.iter().position(|&v| v == got[k]).unwrap();
-                assert_eq!(value, (3 * t + input_corner) as u32, "{connectivity:?}: {t}");
+                assert_eq!(
+                    value,
+                    (3 * t + input_corner) as u32,
+                    "{connectivity:?}: {t}"
+                );
             }
         }
     }
@@ -167,4 +172,14 @@ fn a_consistent_mesh_gets_no_flip_section() {
     let with = encode(&mesh, &options(Connectivity::Lr, false, Orient::Repair)).unwrap();
     let without = encode(&mesh, &options(Connectivity::Lr, false, Orient::AsGiven)).unwrap();
     assert_eq!(with, without);
+}
+
+#[test]
+fn the_forging_fuzz_targets_reach_flip() {
+    // Bit 4 of the first byte: defects and reversed triangles, orientation repaired.
+    for choice in [0x10u8, 0x11, 0x12, 0x13, 0x30, 0xD0] {
+        let bytes = lrmesh::fuzz_checks::forged_base(choice);
+        let sections = Sections::parse(&bytes, &Limits::default()).unwrap();
+        assert!(sections.section(Tag::FLIP).is_some(), "choice {choice:#x}");
+    }
 }

@@ -15,11 +15,11 @@ use lrmesh::format::Metadata;
 use lrmesh::io::{read_mesh, ReadOptions};
 use lrmesh::lr::LrLayout;
 use lrmesh::read::{open, open_verified, Connectivity as View, Limits};
-use lrmesh::write::{encode, Connectivity, EncodeOptions};
+use lrmesh::write::{encode, Connectivity, EncodeOptions, Orient};
 use lrmesh::CornerOps;
 
 /// Sources, read as OFF unless named in [`OBJ_VECTORS`].
-const VECTORS: [&str; 8] = [
+const VECTORS: [&str; 9] = [
     "closed_tetrahedron",
     "boundary_hedra_open",
     "two_components",
@@ -36,10 +36,16 @@ const VECTORS: [&str; 8] = [
     // A flat grid with bent normals: on the 12-bit grid they are predicted from their
     // neighbours (ATTR normal predictor 1, GEOMETRY.md §7.3).
     "bent_normals",
+    // A cube with reversed triangles and per-corner texture coordinates, encoded with its
+    // orientation repaired (section FLIP, FORMAT.md §3.11).
+    "misoriented_cube",
 ];
 
 /// The sources written as OBJ (per-corner attributes, parts).
-const OBJ_VECTORS: [&str; 2] = ["seamed_cube", "bent_normals"];
+const OBJ_VECTORS: [&str; 3] = ["seamed_cube", "bent_normals", "misoriented_cube"];
+
+/// The sources encoded with [`Orient::Repair`].
+const ORIENTED_VECTORS: [&str; 1] = ["misoriented_cube"];
 
 /// Sources also written with quantized positions (`NAME.q12*.lrm`: a 12-bit grid, GEOM
 /// encodings 2 and 4) and attributes (normals on 10 bits, texture coordinates on 12: ATTR
@@ -55,11 +61,17 @@ fn dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("spec/vectors")
 }
 
-/// The options the vectors are encoded with: input order kept, fixed metadata.
-fn options(connectivity: Connectivity, position_bits: Option<u8>) -> EncodeOptions {
+/// The options the vectors are encoded with: input order kept, fixed metadata, the
+/// orientation repaired for [`ORIENTED_VECTORS`].
+fn options(name: &str, connectivity: Connectivity, position_bits: Option<u8>) -> EncodeOptions {
     EncodeOptions {
         connectivity,
         keep_order: true,
+        orient: if ORIENTED_VECTORS.contains(&name) {
+            Orient::Repair
+        } else {
+            Orient::AsGiven
+        },
         position_bits,
         normal_bits: position_bits.map(|_| QUANTIZED_NORMAL_BITS),
         texcoord_bits: position_bits,
@@ -119,6 +131,19 @@ fn listing(name: &str, bytes: &[u8]) -> String {
                 writeln!(out, "{t} {a} {b} {c}").unwrap();
             }
         }
+    }
+    // Section FLIP (FORMAT.md §3.11): u32 F, then the F reversed output triangles.
+    if let Some(flip) = view.sections.section(lrmesh::format::Tag::FLIP) {
+        let words: Vec<String> = flip.bytes[4..]
+            .chunks_exact(4)
+            .map(|w| u32::from_le_bytes(w.try_into().unwrap()).to_string())
+            .collect();
+        writeln!(
+            out,
+            "# FLIP: output triangles reversed on decoding: {}",
+            words.join(" ")
+        )
+        .unwrap();
     }
     out
 }
@@ -315,7 +340,7 @@ fn vectors_match() {
             };
             let source = dir().join(format!("{name}.{extension}"));
             let mesh = read_mesh(&source, &ReadOptions::default()).unwrap().mesh;
-            let bytes = encode(&mesh, &options(connectivity, bits)).unwrap();
+            let bytes = encode(&mesh, &options(name, connectivity, bits)).unwrap();
             let stem = format!("{name}{grid}{suffix}");
             let lrm = dir().join(format!("{stem}.lrm"));
             let txt = dir().join(format!("{stem}.txt"));
@@ -367,8 +392,8 @@ fn vectors_match() {
                 assert_within_half_a_step(&back.positions, &mesh.positions, bits, &stem);
                 mesh.positions = back.positions.clone();
                 // Quantized attribute values come back as `dequantized` says, and as listed.
-                mesh =
-                    lrmesh::write::dequantized(&mesh, &options(connectivity, Some(bits))).unwrap();
+                mesh = lrmesh::write::dequantized(&mesh, &options(name, connectivity, Some(bits)))
+                    .unwrap();
             }
             assert_eq!(
                 values_listing(name, &stored),

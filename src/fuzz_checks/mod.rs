@@ -191,7 +191,8 @@ fn base_sections(choice: u8) -> Vec<crate::write::SectionBytes> {
 }
 
 /// The valid container [`container_forged`] starts from: bits 0–1 of `choice` the kind,
-/// 2–3 the torus's size, 4 holes and defects, 5 the input order kept, 6 positions and
+/// 2–3 the torus's size, 4 holes and defects and every fifth triangle reversed (the
+/// orientation repaired, section `FLIP`), 5 the input order kept, 6 positions and
 /// attribute values quantized (predicted values in Edgebreaker), 7 seams and parts (with
 /// JSON labels at level 0 on the smallest torus without holes, else coded).
 pub fn forged_base(choice: u8) -> Vec<u8> {
@@ -210,8 +211,17 @@ pub fn forged_base(choice: u8) -> Vec<u8> {
     if choice & 0x80 != 0 {
         with_seams_and_parts(&mut mesh);
     }
+    if choice & 0x10 != 0 {
+        let every_fifth: Vec<bool> = (0..mesh.triangles.len()).map(|t| t % 5 == 2).collect();
+        mesh = crate::mesh::reversed(&mesh, &every_fifth);
+    }
     let options = EncodeOptions {
         connectivity: kind,
+        orient: if choice & 0x10 != 0 {
+            crate::write::Orient::Repair
+        } else {
+            crate::write::Orient::AsGiven
+        },
         keep_order: choice & 0x20 != 0,
         position_bits: (choice & 0x40 != 0).then_some(12),
         // Quantized attribute values (ATTR value encoding 1, or 2 in Edgebreaker) with the

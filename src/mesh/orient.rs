@@ -189,7 +189,11 @@ mod tests {
         let mut triangles = Vec::new();
         for i in 0..k {
             let (a, b) = (i, i + k);
-            let (c, d) = if i + 1 < k { (i + 1, i + 1 + k) } else { (k, 0) };
+            let (c, d) = if i + 1 < k {
+                (i + 1, i + 1 + k)
+            } else {
+                (k, 0)
+            };
             triangles.push([a, b, c]);
             triangles.push([c, b, d]);
         }

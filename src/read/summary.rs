@@ -69,6 +69,9 @@ pub struct ContainerSummary {
     pub parts: Option<u32>,
     /// Whether the input's vertex and triangle order is stored.
     pub keeps_order: bool,
+    /// Triangles the writer reversed to repair the orientation, which decoding reverses back
+    /// (`FLIP`; 0 without it).
+    pub reversed_triangles: u32,
     /// The metadata, if any.
     pub metadata: Option<Metadata>,
 }
@@ -266,6 +269,7 @@ impl Container<'_> {
             attribute_details,
             parts: self.parts().map(|p| p.labels.parts.len() as u32),
             keeps_order: self.perm.is_some(),
+            reversed_triangles: self.flips.map_or(0, |f| f.count() as u32),
             metadata: self.metadata.clone(),
         }
     }
@@ -349,6 +353,9 @@ impl std::fmt::Display for ContainerSummary {
             writeln!(f, "parts                    {parts}")?;
         }
         writeln!(f, "input order kept         {}", self.keeps_order)?;
+        if self.reversed_triangles > 0 {
+            writeln!(f, "reversed on decoding     {}", self.reversed_triangles)?;
+        }
         if let Some(m) = &self.metadata {
             writeln!(f, "generator                {}", m.generator)?;
             if let Some(source) = &m.source {

@@ -162,7 +162,12 @@ pub fn encode(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<u8>> {
     let oriented = oriented(mesh, options);
     let (mesh, flipped) = as_encoded(mesh, &oriented, options);
     let table = CornerTable::from_mesh(mesh)?;
-    Ok(assemble(&sections(mesh, Built::Table(&table), options, flipped)?))
+    Ok(assemble(&sections(
+        mesh,
+        Built::Table(&table),
+        options,
+        flipped,
+    )?))
 }
 
 /// The mesh oriented as `options` ask, if they do.
