@@ -23,6 +23,9 @@ use crate::write::{self, EncodeOptions};
 
 /// The median wall-clock time of `runs` calls of `f` (at least one), its result kept alive
 /// past the timer.
+///
+/// Within [`run`], each call is also recorded with its fastest and slowest run, under the
+/// step [`run`] is at (the report's `timings`).
 pub fn median_time<R>(runs: usize, mut f: impl FnMut() -> R) -> Duration {
     let mut times: Vec<Duration> = (0..runs.max(1))
         .map(|_| {
@@ -32,8 +35,50 @@ pub fn median_time<R>(runs: usize, mut f: impl FnMut() -> R) -> Duration {
         })
         .collect();
     times.sort();
-    times[times.len() / 2]
+    let median = times[times.len() / 2];
+    RECORD.with_borrow_mut(|record| {
+        if let Some((step, timings)) = record {
+            timings.push(Timing {
+                step: step.clone(),
+                min_ms: ms(times[0]),
+                median_ms: ms(median),
+                max_ms: ms(times[times.len() - 1]),
+            });
+        }
+    });
+    median
 }
+
+thread_local! {
+    /// While [`run`] runs on this thread: the step it is at, and the timings so far.
+    static RECORD: std::cell::RefCell<Option<(String, Vec<Timing>)>> =
+        const { std::cell::RefCell::new(None) };
+}
+
+/// One timed measurement of [`run`]: its fastest, median and slowest run.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Timing {
+    /// The step of the report it belongs to (`corner table`, `LR (owned)`, …).
+    pub step: String,
+    /// The fastest run, in milliseconds.
+    pub min_ms: f64,
+    /// The median run.
+    pub median_ms: f64,
+    /// The slowest run.
+    pub max_ms: f64,
+}
+
+impl Timing {
+    /// How far apart the runs were: `(max - min) / median`.
+    pub fn spread(&self) -> f64 {
+        (self.max_ms - self.min_ms) / self.median_ms.max(1e-9)
+    }
+}
+
+/// Measurements shorter than this are not judged by their spread (timer noise).
+const JUDGED_MS: f64 = 1.0;
+/// A spread above this says the machine was busy while the runs ran.
+const BUSY_SPREAD: f64 = 0.5;
 
 /// The median time of copying `bytes` into a buffer of their size (allocated once): the
 /// baseline that an open of the same bytes is measured against.
@@ -228,6 +273,12 @@ pub struct BenchReport {
     pub baseline_ns: LoopFigures,
     /// The rows.
     pub rows: Vec<BenchRow>,
+    /// The largest `(max - min) / median` of the timed measurements of at least 1 ms.
+    pub spread: f64,
+    /// Set when that spread is above 0.5: the machine was busy.
+    pub warning: Option<String>,
+    /// Every timed measurement, with its fastest, median and slowest run.
+    pub timings: Vec<Timing>,
 }
 
 fn ms(d: Duration) -> f64 {
@@ -269,6 +320,15 @@ pub fn run(
     let runs = options.runs.max(1);
     let n = mesh.triangles.len();
     let mut rows = Vec::new();
+    RECORD.set(Some((String::new(), Vec::new())));
+    let progress = &mut |step: &str| {
+        RECORD.with_borrow_mut(|r| {
+            if let Some((at, _)) = r {
+                *at = step.to_string();
+            }
+        });
+        progress(step)
+    };
 
     progress("corner table");
     let table = CornerTable::from_mesh(mesh)?;
@@ -419,12 +479,32 @@ pub fn run(
         Some((&cts_loops, &ct_loops)),
     ));
 
+    let timings = RECORD.take().map(|(_, t)| t).unwrap_or_default();
+    let judged = timings.iter().filter(|t| t.median_ms >= JUDGED_MS);
+    let worst = judged.max_by(|a, b| a.spread().total_cmp(&b.spread()));
+    let spread = worst.map_or(0.0, Timing::spread);
+    let warning = worst
+        .filter(|t| runs > 1 && t.spread() > BUSY_SPREAD)
+        .map(|t| {
+            format!(
+                "the runs of a step differ by {:.0}% of its median ({}: {:.2} to {:.2} ms): the \
+             machine was busy and the figures are unreliable; rerun on a quiet machine or with \
+             more --runs",
+                100.0 * t.spread(),
+                t.step,
+                t.min_ms,
+                t.max_ms
+            )
+        });
     Ok(BenchReport {
         vertices: mesh.positions.len(),
         triangles: n,
         runs,
         baseline_ns: LoopFigures::new([0, 1, 2, 3, 4].map(|i| ct_loops.ns_per_item(i))),
         rows,
+        spread,
+        warning,
+        timings,
     })
 }
 
@@ -494,6 +574,15 @@ impl std::fmt::Display for BenchReport {
              table; views: the whole .lrm encoded from the mesh. open: the well-formed check of \
              the .lrm (views), decoding (Edgebreaker); /memcpy: open as a ratio to copying the \
              same bytes; verify: every rule, the semantic ones included (views)"
-        )
+        )?;
+        writeln!(
+            f,
+            "spread: the runs of a step (1 ms or more) differ by at most {:.0}% of its median",
+            100.0 * self.spread
+        )?;
+        if let Some(w) = &self.warning {
+            writeln!(f, "warning: {w}")?;
+        }
+        Ok(())
     }
 }

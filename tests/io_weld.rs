@@ -66,3 +66,29 @@ fn weld_merges_equal_positions_in_obj_off_and_ply() {
         assert_eq!(corners(&plain), corners(&mesh), "{format:?}");
     }
 }
+
+/// `Mesh::weld_within`: vertices a little apart (an STL written with rounding) merge into
+/// the first one within the tolerance, positions moving by at most it; farther ones stay.
+#[test]
+fn weld_within_a_tolerance() {
+    let e = 1e-4;
+    let mesh = Mesh::new(
+        vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [1.0 + e, 0.0, 0.0], // 1 again
+            [0.0, 1.0 - e, e],   // 2 again
+            [1.0, 1.0, 0.0],
+            [1.0, 1.0 + 3.0 * e, 0.0], // farther than the tolerance from 5
+        ],
+        vec![[0, 1, 2], [3, 5, 4], [3, 6, 4]],
+    );
+    let welded = mesh.weld_within(2.0 * e);
+    assert_eq!(welded.positions.len(), 5);
+    assert_eq!(welded.triangles, vec![[0, 1, 2], [1, 3, 2], [1, 4, 2]]);
+    assert_eq!(welded.positions[4], [1.0, 1.0 + 3.0 * e, 0.0]);
+    // No tolerance: exact positions only.
+    assert_eq!(mesh.weld_within(0.0), mesh.weld());
+    assert_eq!(mesh.weld().positions.len(), 7);
+}

@@ -97,21 +97,59 @@ impl Mesh {
     /// values kept as they were, each corner pointing at its old vertex's); one that agrees
     /// stays per vertex. Vertices keep the order of their first occurrence.
     pub fn weld(&self) -> Mesh {
-        let mut id_of: HashMap<[u32; 3], u32> = HashMap::with_capacity(self.positions.len());
-        let mut first = Vec::new(); // new vertex -> first old vertex
-        let merged: Vec<u32> = self
-            .positions
-            .iter()
-            .enumerate()
-            .map(|(v, p)| {
-                *id_of
-                    .entry(p.map(|x| if x == 0.0 { 0 } else { x.to_bits() }))
-                    .or_insert_with(|| {
-                        first.push(v);
-                        (first.len() - 1) as u32
-                    })
-            })
+        let mut id_of: HashMap<[u32; 3], usize> = HashMap::with_capacity(self.positions.len());
+        let representative = (self.positions.iter().enumerate())
+            .map(|(v, p)| *id_of.entry(p.map(bits_of)).or_insert(v))
             .collect();
+        self.welded(representative)
+    }
+
+    /// [`Mesh::weld`] that also merges vertices whose positions differ by at most
+    /// `tolerance` in every coordinate: each vertex merges into the first earlier vertex
+    /// that close (which need not be close to a third), and takes its position, so that
+    /// positions move by at most `tolerance`. A `tolerance` of 0 (or less, or NaN) is
+    /// [`Mesh::weld`]. Linear in the vertices, through a grid of cells `tolerance` wide.
+    pub fn weld_within(&self, tolerance: f32) -> Mesh {
+        if tolerance.is_nan() || tolerance <= 0.0 {
+            return self.weld();
+        }
+        let cell = |p: [f32; 3]| p.map(|x| (x / tolerance).floor() as i64);
+        let mut kept: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+        let mut representative = Vec::with_capacity(self.positions.len());
+        for (v, &p) in self.positions.iter().enumerate() {
+            let [x, y, z] = cell(p);
+            let near = (x - 1..=x + 1)
+                .flat_map(|a| {
+                    (y - 1..=y + 1).flat_map(move |b| (z - 1..=z + 1).map(move |c| [a, b, c]))
+                })
+                .filter_map(|k| kept.get(&k))
+                .flatten()
+                .copied()
+                .filter(|&w| (0..3).all(|i| (self.positions[w][i] - p[i]).abs() <= tolerance))
+                .min();
+            match near {
+                Some(w) => representative.push(w),
+                None => {
+                    kept.entry([x, y, z]).or_default().push(v);
+                    representative.push(v);
+                }
+            }
+        }
+        self.welded(representative)
+    }
+
+    /// The mesh with each vertex `v` merged into `representative[v]` (an earlier or the same
+    /// vertex, itself its own representative), which gives its position.
+    fn welded(&self, representative: Vec<usize>) -> Mesh {
+        let mut first = Vec::new(); // new vertex -> first old vertex
+        let mut new_id = vec![0u32; self.positions.len()];
+        for (v, &r) in representative.iter().enumerate() {
+            if r == v {
+                new_id[v] = first.len() as u32;
+                first.push(v);
+            }
+        }
+        let merged: Vec<u32> = representative.iter().map(|&r| new_id[r]).collect();
         let triangles: Vec<[u32; 3]> = self
             .triangles
             .iter()
@@ -145,6 +183,15 @@ impl Mesh {
             attributes,
             parts: self.parts.clone(),
         }
+    }
+}
+
+/// The bits of a coordinate, `-0.0` as `+0.0` (the same position).
+fn bits_of(x: f32) -> u32 {
+    if x == 0.0 {
+        0
+    } else {
+        x.to_bits()
     }
 }
 

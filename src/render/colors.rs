@@ -46,7 +46,7 @@ pub(super) fn ring_color<L: LrLayout>(
 }
 
 /// Hue from blue (`x = 0`) through cyan, green and yellow to red (`x = 1`).
-fn blue_to_red(x: f32) -> [f32; 3] {
+pub(super) fn blue_to_red(x: f32) -> [f32; 3] {
     let h = 4.0 * (1.0 - x.clamp(0.0, 1.0)); // 4 = blue, 0 = red, in sixths of the hue circle
     let f = h - h.floor();
     let rgb = match h as u32 {

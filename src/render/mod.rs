@@ -38,6 +38,7 @@
 
 mod camera;
 mod colors;
+mod legend;
 mod raster;
 
 use std::io::Write;
@@ -50,6 +51,7 @@ use crate::lr::{LrInspect, LrLayout};
 use crate::ops::CornerOps;
 
 pub use self::camera::Camera;
+pub use self::legend::{legend_height, with_legend};
 
 /// Most samples (pixels times supersamples) an image may have: 2^26, about 470 MB of buffers.
 pub const MAX_SAMPLES: u64 = 1 << 26;

@@ -1,30 +1,24 @@
 //! `lrmesh bench`: every representation compared on one mesh in one run.
 
-use std::path::PathBuf;
-
-use crate::common::{load, show, show_json};
+use crate::common::{show, show_json, MeshInput};
 use crate::progress;
 
 /// Compare the connectivity representations on one mesh in one run: sizes, build and
 /// open times, and the LR paper's Fig. 10 loops as ratios to the corner table.
 #[derive(clap::Args)]
 pub struct Args {
-    /// The mesh file (.obj, .off, .ply, .stl).
-    mesh: PathBuf,
+    #[command(flatten)]
+    input: MeshInput,
     /// Print one JSON object instead of the table.
     #[arg(long)]
     json: bool,
     /// Timed runs of each step; the median is reported.
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
     runs: u32,
-    /// Merge vertices with identical positions into shared vertices (any input format:
-    /// attributes that differ between them become per corner)
-    #[arg(long)]
-    weld: bool,
 }
 
 pub fn run(args: Args) -> lrmesh::Result<()> {
-    let input = load(&args.mesh, args.weld)?;
+    let input = args.input.load()?;
     let bar = progress::spinner("benchmarking");
     let report = lrmesh::bench::run(
         &input,

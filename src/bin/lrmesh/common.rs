@@ -1,7 +1,7 @@
 //! What every command shares: output that survives a closed pipe, reading meshes with their
 //! warnings, memory-mapping containers.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use lrmesh::io::{self, MeshFormat, ReadOptions};
 use lrmesh::{Error, Mesh};
@@ -31,6 +31,199 @@ pub fn show_json(value: &impl serde::Serialize) {
     }
 }
 
+/// A mesh to read: a file, or standard input (`-`), and how to read it. Every command that
+/// reads a mesh takes these.
+#[derive(clap::Args)]
+pub struct MeshInput {
+    /// The mesh (.obj, .off, .ply, .stl, .gltf, .glb; a container .lrm where the command
+    /// reads one), or `-` for standard input
+    #[arg(value_name = "INPUT")]
+    pub path: PathBuf,
+    /// The input's format, for standard input or a name without its extension (a container
+    /// on standard input is recognised without it)
+    #[arg(long, value_enum, value_name = "FORMAT")]
+    pub format: Option<Format>,
+    /// Merge vertices with identical positions into shared vertices (any input format:
+    /// attributes that differ between them become per corner)
+    #[arg(long)]
+    pub weld: bool,
+    /// With --weld, also merge vertices whose coordinates all differ by at most DISTANCE
+    /// (each into the first one that close, taking its position)
+    #[arg(long, value_name = "DISTANCE", requires = "weld")]
+    pub weld_tolerance: Option<f32>,
+}
+
+/// Mesh formats named on the command line.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    Obj,
+    Off,
+    Ply,
+    Stl,
+    Gltf,
+    Glb,
+    /// The lrmesh container.
+    Lrm,
+}
+
+impl From<Format> for MeshFormat {
+    fn from(f: Format) -> MeshFormat {
+        match f {
+            Format::Obj => MeshFormat::Obj,
+            Format::Off => MeshFormat::Off,
+            Format::Ply => MeshFormat::Ply,
+            Format::Stl => MeshFormat::Stl,
+            Format::Gltf => MeshFormat::Gltf,
+            Format::Glb => MeshFormat::Glb,
+            Format::Lrm => MeshFormat::Lrm,
+        }
+    }
+}
+
+/// Whether `path` is `-`: standard input or output.
+pub fn is_stdio(path: &Path) -> bool {
+    path.as_os_str() == "-"
+}
+
+/// Standard input, whole.
+fn stdin_bytes() -> lrmesh::Result<Vec<u8>> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    std::io::stdin()
+        .lock()
+        .read_to_end(&mut bytes)
+        .map_err(|source| Error::Io {
+            path: "-".into(),
+            source,
+        })?;
+    Ok(bytes)
+}
+
+/// The bytes of a container: a mapped file, or standard input read whole.
+pub enum Bytes {
+    Mapped(memmap2::Mmap),
+    Read(Vec<u8>),
+}
+
+impl std::ops::Deref for Bytes {
+    type Target = [u8];
+    fn deref(&self) -> &[u8] {
+        match self {
+            Bytes::Mapped(m) => m,
+            Bytes::Read(v) => v,
+        }
+    }
+}
+
+/// The bytes of the container `path` names (`-`: standard input).
+pub fn read_container(path: &Path) -> lrmesh::Result<Bytes> {
+    if is_stdio(path) {
+        stdin_bytes().map(Bytes::Read)
+    } else {
+        map(path).map(Bytes::Mapped)
+    }
+}
+
+impl MeshInput {
+    /// Whether the input is a container: by `--format`, by its extension, or on standard
+    /// input by its first bytes (which are then read and kept).
+    pub fn container(&self) -> lrmesh::Result<Option<Bytes>> {
+        let named = match self.format {
+            Some(f) => f == Format::Lrm,
+            None => is_container(&self.path),
+        };
+        if is_stdio(&self.path) && self.format.is_none() {
+            let bytes = stdin_bytes()?;
+            if bytes.starts_with(&lrmesh::format::MAGIC) {
+                return Ok(Some(Bytes::Read(bytes)));
+            }
+            return Err(Error::InvalidArgument(
+                "a mesh on standard input needs --format (obj, off, ply, stl, gltf or glb)".into(),
+            ));
+        }
+        if named {
+            return read_container(&self.path).map(Some);
+        }
+        Ok(None)
+    }
+
+    /// Reads the mesh (a container is decoded, fully validated), printing the reader's
+    /// warnings, welded as asked.
+    pub fn load(&self) -> lrmesh::Result<Mesh> {
+        let path = &self.path;
+        let options = ReadOptions { weld: self.weld };
+        let loaded = progress::step(&format!("reading {}", path.display()), || {
+            let from_bytes = |bytes: &[u8], format: MeshFormat| {
+                io::read_mesh_bytes(bytes, format, &options).map_err(|e| e.with_file(path))
+            };
+            match (is_stdio(path), self.format) {
+                (true, Some(f)) => from_bytes(&stdin_bytes()?, f.into()),
+                (true, None) => {
+                    let bytes = stdin_bytes()?;
+                    if bytes.starts_with(&lrmesh::format::MAGIC) {
+                        return from_bytes(&bytes, MeshFormat::Lrm);
+                    }
+                    Err(Error::InvalidArgument(
+                        "a mesh on standard input needs --format (obj, off, ply, stl, gltf or glb)"
+                            .into(),
+                    ))
+                }
+                (false, Some(f)) if MeshFormat::from_path(path).ok() != Some(f.into()) => {
+                    let bytes = std::fs::read(path).map_err(|source| Error::Io {
+                        path: path.clone(),
+                        source,
+                    })?;
+                    from_bytes(&bytes, f.into())
+                }
+                _ => io::read_mesh(path, &options),
+            }
+        })?;
+        for warning in &loaded.warnings {
+            eprintln!("warning: {}: {warning}", path.display());
+        }
+        Ok(match self.weld_tolerance {
+            Some(t) => loaded.mesh.weld_within(t),
+            None => loaded.mesh,
+        })
+    }
+}
+
+/// Where a command's report goes: standard output, or standard error when the command's
+/// data goes to standard output (`-o -`), so that a pipe carries the data alone.
+pub struct Report {
+    to_stderr: bool,
+}
+
+impl Report {
+    pub fn new(data_on_stdout: bool) -> Report {
+        Report {
+            to_stderr: data_on_stdout,
+        }
+    }
+
+    /// One line of text.
+    pub fn line(&self, text: &str) {
+        if self.to_stderr {
+            eprintln!("{text}");
+        } else {
+            say!("{text}");
+        }
+    }
+
+    /// A value as pretty JSON.
+    pub fn json(&self, value: &impl serde::Serialize) {
+        match serde_json::to_string_pretty(value) {
+            Ok(text) => self.line(&text),
+            Err(e) => eprintln!("error: the report does not serialise: {e}"),
+        }
+    }
+}
+
+/// Milliseconds of a duration.
+pub fn ms(d: std::time::Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
 /// Maps a container file read-only.
 pub fn map(path: &Path) -> lrmesh::Result<memmap2::Mmap> {
     let io_error = |source| Error::Io {
@@ -52,21 +245,37 @@ pub fn is_container(path: &Path) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("lrm"))
 }
 
-/// Reads a mesh file, printing the reader's warnings.
-pub fn load(path: &Path, weld: bool) -> lrmesh::Result<Mesh> {
-    let loaded = progress::step(&format!("reading {}", path.display()), || {
-        io::read_mesh(path, &ReadOptions { weld })
-    })?;
-    for warning in &loaded.warnings {
-        eprintln!("warning: {}: {warning}", path.display());
-    }
-    Ok(loaded.mesh)
+/// Writes `bytes` to the file `path`, or to standard output (`-`).
+pub fn write_out(path: &Path, bytes: &[u8]) -> lrmesh::Result<()> {
+    use std::io::Write;
+    let result = if is_stdio(path) {
+        let mut out = std::io::stdout().lock();
+        out.write_all(bytes).and_then(|()| out.flush())
+    } else {
+        std::fs::write(path, bytes)
+    };
+    result.map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
-/// Writes a mesh file in the format of its extension (STL binary unless `ascii`), first
-/// warning on stderr about what the format cannot keep.
-pub fn save(path: &Path, mesh: &Mesh, ascii: bool) -> lrmesh::Result<()> {
-    let format = MeshFormat::from_path(path)?;
+/// The format of an output: `format` when given, else the extension of `path` (standard
+/// output, `-`, needs `format`).
+pub fn output_format(path: &Path, format: Option<Format>) -> lrmesh::Result<MeshFormat> {
+    match format {
+        Some(f) => Ok(f.into()),
+        None if is_stdio(path) => Err(Error::InvalidArgument(
+            "writing a mesh to standard output needs --format (obj, off, ply, stl, gltf, glb)"
+                .into(),
+        )),
+        None => MeshFormat::from_path(path),
+    }
+}
+
+/// Writes a mesh as `format` (STL binary unless `ascii`) to the file `path` or standard
+/// output (`-`), first warning on stderr about what the format cannot keep.
+pub fn save(path: &Path, format: MeshFormat, mesh: &Mesh, ascii: bool) -> lrmesh::Result<()> {
     if ascii && format != MeshFormat::Stl {
         return Err(Error::InvalidArgument(format!(
             "--ascii applies to STL output only, not to {}",
@@ -77,16 +286,20 @@ pub fn save(path: &Path, mesh: &Mesh, ascii: bool) -> lrmesh::Result<()> {
         eprintln!("warning: {}: {loss}", path.display());
     }
     progress::step("writing", || {
-        if !ascii {
+        if !ascii && !is_stdio(path) && MeshFormat::from_path(path).ok() == Some(format) {
             return io::write_mesh(path, mesh);
         }
-        mesh.validate()?;
-        let io_error = |source| Error::Io {
-            path: path.to_path_buf(),
-            source,
-        };
-        let file = std::fs::File::create(path).map_err(io_error)?;
-        io::stl::write_ascii(file, mesh).map_err(io_error)
+        let mut bytes = Vec::new();
+        if ascii {
+            mesh.validate()?;
+            io::stl::write_ascii(&mut bytes, mesh).map_err(|source| Error::Io {
+                path: path.to_path_buf(),
+                source,
+            })?;
+        } else {
+            io::write_mesh_to(&mut bytes, mesh, format)?;
+        }
+        write_out(path, &bytes)
     })
 }
 

@@ -2,23 +2,23 @@
 //! indexed triangle list and a corner table.
 
 use std::path::PathBuf;
+use std::time::Instant;
 
 use clap::ValueEnum;
 use lrmesh::lr::LrOptions;
 use lrmesh::read::{self, Limits};
-use lrmesh::write::{self, EncodeOptions};
-use lrmesh::Error;
+use lrmesh::write::{self, EncodeOptions, Orient};
 
-use crate::common::{load, say};
+use crate::common::{is_stdio, ms, write_out, MeshInput, Report};
 use crate::progress;
-use crate::stats::compact_periods;
+use crate::stats::{compact_periods, hints};
 
 /// Encode a mesh into an .lrm container and print the sizes.
 #[derive(clap::Args)]
 pub struct Args {
-    /// The input mesh (.obj, .off, .ply, .stl).
-    input: PathBuf,
-    /// The container to write.
+    #[command(flatten)]
+    input: MeshInput,
+    /// The container to write, or `-` for standard output (the report then goes to stderr).
     #[arg(short, long)]
     output: PathBuf,
     /// Connectivity representation.
@@ -62,10 +62,20 @@ pub struct Args {
     /// instead of trying several and keeping the smallest.
     #[arg(long)]
     period: Option<u32>,
-    /// Merge vertices with identical positions into shared vertices (any input format:
-    /// attributes that differ between them become per corner)
+    /// Make the triangles' orientation consistent first (reversing those that disagree with
+    /// their neighbours, per component): an edge two triangles use in the same direction
+    /// cuts the surface, which costs every representation. Decoding still gives back the
+    /// input's triangles (the reversed ones are listed in the file)
     #[arg(long)]
-    weld: bool,
+    orient: bool,
+    /// With --orient: decoding gives the repaired triangles instead of the input's
+    #[arg(long, requires = "orient")]
+    keep_repaired: bool,
+    /// Print one JSON object instead of text: the container's figures as `lrmesh info
+    /// --json` gives them (`container`), with `output`, `bytes`, `read_ms`, `encode_ms`,
+    /// `write_ms`, `orientation` and `hints`
+    #[arg(long)]
+    json: bool,
 }
 
 /// Connectivity representations of a container.
@@ -82,8 +92,32 @@ enum Connectivity {
     LrCompact,
 }
 
+/// The JSON report of `lrmesh encode --json`.
+#[derive(serde::Serialize)]
+struct EncodeReport {
+    output: String,
+    bytes: usize,
+    read_ms: f64,
+    encode_ms: f64,
+    write_ms: f64,
+    /// With --orient: triangles reversed, and edges that still disagree (a Möbius band).
+    orientation: Option<Orientation>,
+    hints: Vec<String>,
+    container: lrmesh::read::ContainerSummary,
+}
+
+#[derive(serde::Serialize)]
+struct Orientation {
+    reversed_triangles: usize,
+    conflicts: usize,
+    recorded: bool,
+}
+
 pub fn run(args: Args) -> lrmesh::Result<()> {
-    let mesh = load(&args.input, args.weld)?;
+    let started = Instant::now();
+    let mesh = args.input.load()?;
+    let read_ms = ms(started.elapsed());
+    let report = Report::new(is_stdio(&args.output));
     let mut options = EncodeOptions {
         connectivity: match args.connectivity {
             Connectivity::Lr => write::Connectivity::Lr,
@@ -102,52 +136,96 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
         texcoord_bits: args.quantize_texcoord,
         color_bits: args.quantize_color,
         level: args.level,
+        orient: match (args.orient, args.keep_repaired) {
+            (false, _) => Orient::AsGiven,
+            (true, false) => Orient::Repair,
+            (true, true) => Orient::RepairAndKeep,
+        },
         ..EncodeOptions::default()
     };
-    options.metadata.source = args
-        .input
-        .file_name()
+    options.metadata.source = (!is_stdio(&args.input.path))
+        .then(|| args.input.path.file_name())
+        .flatten()
         .map(|n| n.to_string_lossy().into_owned());
+    let orientation = args.orient.then(|| {
+        let o = lrmesh::mesh::orient(&mesh);
+        Orientation {
+            reversed_triangles: o.flipped_count(),
+            conflicts: o.conflicts,
+            recorded: !args.keep_repaired && o.flipped_count() > 0,
+        }
+    });
+    let hints = hints(&mesh, args.orient, args.input.weld);
+    let started = Instant::now();
     let bytes = progress::step("encoding", || write::encode(&mesh, &options))?;
+    let encode_ms = ms(started.elapsed());
     let output = &args.output;
-    std::fs::write(output, &bytes).map_err(|source| Error::Io {
-        path: output.clone(),
-        source,
-    })?;
+    let started = Instant::now();
+    write_out(output, &bytes)?;
+    let write_ms = ms(started.elapsed());
     let summary = read::open(&bytes, &Limits::default())?.summary();
+    if args.json {
+        report.json(&EncodeReport {
+            output: output.display().to_string(),
+            bytes: bytes.len(),
+            read_ms,
+            encode_ms,
+            write_ms,
+            orientation,
+            hints,
+            container: summary,
+        });
+        return Ok(());
+    }
+    let say = |line: String| report.line(&line);
     let n = summary.triangles.max(1) as f64;
     let table_refs = 6 * summary.triangles + summary.connectivity_vertices as u64;
-    say!("wrote {}: {} bytes", output.display(), bytes.len());
-    say!(
+    say(format!("wrote {}: {} bytes", output.display(), bytes.len()));
+    say(format!(
         "{:<28} {:>12} {:>10} {:>10}",
-        "connectivity",
-        "bytes",
-        "bits/tri",
-        "refs/tri"
-    );
-    say!(
+        "connectivity", "bytes", "bits/tri", "refs/tri"
+    ));
+    say(format!(
         "{:<28} {:>12} {:>10.2} {:>10}",
         format!("{} (this file)", summary.connectivity),
         summary.connectivity_bytes,
         summary.connectivity_bpt,
         summary.rpt.map_or("-".to_string(), |r| format!("{r:.3}"))
-    );
-    say!(
+    ));
+    say(format!(
         "{:<28} {:>12} {:>10.2} {:>10.3}",
         "indexed triangle list",
         12 * summary.triangles,
         96.0,
         3.0
-    );
-    say!(
+    ));
+    say(format!(
         "{:<28} {:>12} {:>10.2} {:>10.3}",
         "corner table (V, O, C)",
         4 * table_refs,
         32.0 * table_refs as f64 / n,
         table_refs as f64 / n
-    );
+    ));
+    if let Some(o) = &orientation {
+        say(format!(
+            "orientation repaired: {} triangles reversed{}{}",
+            o.reversed_triangles,
+            if o.recorded {
+                " (decoding reverses them back)"
+            } else {
+                ""
+            },
+            match o.conflicts {
+                0 => String::new(),
+                n => format!(", {n} edges still disagree (a non-orientable surface)"),
+            }
+        ));
+    }
+    for hint in &hints {
+        eprintln!("hint: {hint}");
+    }
     if let Some(bits) = args.quantize_position {
-        say!("positions quantized to {bits} bits: lossy");
+        say(format!("positions quantized to {bits} bits: lossy"));
     }
     for (what, bits) in [
         ("normals", args.quantize_normal),
@@ -155,7 +233,7 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
         ("colors", args.quantize_color),
     ] {
         if let Some(bits) = bits {
-            say!("f32 {what} quantized to {bits} bits: lossy");
+            say(format!("f32 {what} quantized to {bits} bits: lossy"));
         }
     }
     Ok(())

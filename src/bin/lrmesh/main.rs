@@ -12,6 +12,7 @@ mod encode;
 mod info;
 mod progress;
 mod render;
+mod shell;
 mod stats;
 
 #[derive(Parser)]
@@ -20,7 +21,7 @@ mod stats;
     version,
     about = "Compact random-access triangle mesh connectivity"
 )]
-struct Cli {
+pub struct Cli {
     #[command(subcommand)]
     command: Command,
 }
@@ -46,6 +47,10 @@ enum Command {
     /// Compare the connectivity representations on one mesh in one run: sizes, build and
     /// open times, and the LR paper's Fig. 10 loops as ratios to the corner table.
     Bench(bench::Args),
+    /// Print a shell's completion script (bash, zsh, fish, elvish, powershell).
+    Completions(shell::CompletionsArgs),
+    /// Print the man page (roff), with a section for every command.
+    Man(shell::ManArgs),
 }
 
 fn run(cli: Cli) -> lrmesh::Result<()> {
@@ -58,6 +63,8 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
         Command::Convert(args) => convert::run(args),
         Command::Render(args) => render::run(args),
         Command::Bench(args) => bench::run(args),
+        Command::Completions(args) => shell::completions(args),
+        Command::Man(args) => shell::man(args),
     }
 }
 

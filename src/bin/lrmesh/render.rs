@@ -8,16 +8,16 @@ use lrmesh::read::{self, Limits};
 use lrmesh::render::{self, Axis, ColorMode, RenderOptions};
 use lrmesh::{CornerOps, CornerTable, Error, Vertex};
 
-use crate::common::{is_container, load, map};
+use crate::common::{write_out, MeshInput};
 use crate::progress;
 
 /// Draw the mesh as a PNG: coloured by ring order (blue to red, LR paper Table 1) or by
 /// triangle class (T0, T2 and warts highlighted, LR paper Fig. 1).
 #[derive(clap::Args)]
 pub struct Args {
-    /// The mesh file (.obj, .off, .ply, .stl) or an LR container (.lrm).
-    mesh: PathBuf,
-    /// The PNG to write.
+    #[command(flatten)]
+    input: MeshInput,
+    /// The PNG to write, or `-` for standard output.
     #[arg(short, long)]
     output: PathBuf,
     /// `ring`: ring order, blue to red; `classes`: T0 green, T0^w red, T2 blue, T2^w
@@ -39,6 +39,10 @@ pub struct Args {
     /// Draw the ring edges as black lines.
     #[arg(long)]
     ring_lines: bool,
+    /// Leave out the legend (the colour ramp or the class swatches, in a band at the
+    /// bottom of the picture's size).
+    #[arg(long)]
+    no_legend: bool,
     /// Supersamples per pixel along each axis (anti-aliasing).
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=4))]
     samples: u32,
@@ -48,10 +52,6 @@ pub struct Args {
     /// Seed for the choice of seed corners (mesh input only).
     #[arg(long, default_value_t = LrOptions::default().seed)]
     seed: u64,
-    /// Merge vertices with identical positions into shared vertices (any input format:
-    /// attributes that differ between them become per corner)
-    #[arg(long)]
-    weld: bool,
 }
 
 /// Colourings of `lrmesh render`.
@@ -99,9 +99,12 @@ fn parse_view(s: &str) -> Result<(f32, f32), String> {
 }
 
 pub fn run(args: Args) -> lrmesh::Result<()> {
+    // The legend takes a band at the bottom of the size asked for, when there is room.
+    let band = render::legend_height(args.size.0);
+    let legend = !args.no_legend && args.size.1 >= 2 * band;
     let options = RenderOptions {
         width: args.size.0,
-        height: args.size.1,
+        height: args.size.1 - if legend { band } else { 0 },
         mode: match args.mode {
             RenderMode::Ring => ColorMode::Ring,
             RenderMode::Classes => ColorMode::Classes,
@@ -118,9 +121,8 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
         ring_lines: args.ring_lines,
         ..RenderOptions::default()
     };
-    let mesh = &args.mesh;
-    let image = if is_container(mesh) {
-        let bytes = map(mesh)?;
+    let mesh = &args.input.path;
+    let image = if let Some(bytes) = args.input.container()? {
         let view =
             read::open_verified(&bytes, &Limits::default()).map_err(|e| e.with_file(mesh))?;
         let positions = view.positions();
@@ -136,7 +138,7 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
             )));
         }
     } else {
-        let input = load(mesh, args.weld)?;
+        let input = args.input.load()?;
         let table = progress::step("building the corner table", || {
             CornerTable::from_mesh(&input)
         })?;
@@ -156,15 +158,18 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
             render::render(lr.tables(), &positions, &options)
         })?
     };
+    let image = if legend {
+        render::with_legend(&image, options.mode)
+    } else {
+        image
+    };
     let output = &args.output;
-    let io_error = |source| Error::Io {
+    let mut png = Vec::new();
+    image.write_png(&mut png).map_err(|source| Error::Io {
         path: output.clone(),
         source,
-    };
-    let file = std::fs::File::create(output).map_err(io_error)?;
-    image
-        .write_png(std::io::BufWriter::new(file))
-        .map_err(io_error)?;
+    })?;
+    write_out(output, &png)?;
     eprintln!(
         "wrote {}: {}x{} pixels",
         output.display(),

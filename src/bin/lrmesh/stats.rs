@@ -1,28 +1,26 @@
 //! `lrmesh stats`: the storage figures of every connectivity representation (LR paper,
 //! Table 1), each structure built once.
 
-use std::path::PathBuf;
-
 use lrmesh::edgebreaker::EdgebreakerStats;
 use lrmesh::lr::{CompactLr, CompactOptions, Lr, LrOptions, LrStats};
 use lrmesh::strips::{StripOptions, StripStats};
-use lrmesh::{CornerTable, TopologyReport};
+use lrmesh::{CornerTable, Mesh, TopologyReport};
 
-use crate::common::{load, show, show_json};
+use crate::common::{show, show_json, MeshInput};
 use crate::progress;
 
 /// Storage statistics of the mesh's connectivity representations (LR paper, Table 1).
 #[derive(clap::Args)]
 pub struct Args {
-    /// The mesh file (.obj, .off, .ply, .stl).
-    mesh: PathBuf,
-    /// Print one JSON object instead of text.
+    #[command(flatten)]
+    input: MeshInput,
+    /// Print one JSON object instead of text (keys `lr`, `lr_compact`, `edgebreaker`,
+    /// `strips`, and `hints`).
     #[arg(long)]
     json: bool,
-    /// Merge vertices with identical positions into shared vertices (any input format:
-    /// attributes that differ between them become per corner)
+    /// Make the triangles' orientation consistent first, as `encode --orient` does.
     #[arg(long)]
-    weld: bool,
+    orient: bool,
     /// RING-EXPANDER runs per component (different seed corners); the best ring is kept.
     #[arg(long, default_value_t = LrOptions::default().tries)]
     tries: u32,
@@ -40,8 +38,37 @@ pub fn compact_periods(period: Option<u32>) -> Vec<u32> {
     period.map_or(CompactOptions::default().periods, |k| vec![k])
 }
 
+/// One-line hints at what makes the representations larger than the mesh needs, each
+/// naming the option that helps (not given when that option is on): edges two triangles use
+/// in the same direction (`--orient`), vertices that repeat another's position (`--weld`).
+pub fn hints(mesh: &Mesh, orient: bool, weld: bool) -> Vec<String> {
+    let report = TopologyReport::of(mesh);
+    let mut out = Vec::new();
+    if !orient && report.inconsistent_edges > 0 {
+        out.push(format!(
+            "{} edges run twice in the same direction (inconsistent orientation), which cuts \
+             the surface there: --orient repairs it",
+            report.inconsistent_edges
+        ));
+    }
+    if !weld && report.duplicate_positions > 0 {
+        out.push(format!(
+            "{} vertices repeat another vertex's position (an unwelded mesh?), which cuts \
+             the surface there: --weld merges them",
+            report.duplicate_positions
+        ));
+    }
+    out
+}
+
 pub fn run(args: Args) -> lrmesh::Result<()> {
-    let mesh = load(&args.mesh, args.weld)?;
+    let mesh = args.input.load()?;
+    let hints = hints(&mesh, args.orient, args.input.weld);
+    let mesh = if args.orient {
+        lrmesh::mesh::orient(&mesh).mesh
+    } else {
+        mesh
+    };
     let lr_options = LrOptions {
         tries: args.tries,
         seed: args.seed,
@@ -72,12 +99,16 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
             "lr_compact": compact,
             "edgebreaker": edgebreaker,
             "strips": strips,
+            "hints": hints,
         }));
     } else {
         show(&stats);
         show(&compact);
         show(&edgebreaker);
         show(&strips);
+        for hint in &hints {
+            eprintln!("hint: {hint}");
+        }
     }
     Ok(())
 }
