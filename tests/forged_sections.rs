@@ -232,31 +232,36 @@ fn v26_triangle_count_located() {
     breaks(&bad, 26, "PERM", section_at(&bytes, Tag::PERM) + 4, "");
 }
 
-/// [V54] `FLIP`: length `4 + 4F`; the reversed output triangles strictly increasing, each
-/// below `N + K`.
+/// [V54] `FLIP`: `T = N + K`; length `4 + ⌈T/8⌉`; the padding bits 0.
 #[test]
 fn v54_reversed_triangles() {
-    let bytes = vector("misoriented_cube.lrm"); // N + K = 12; FLIP 2 3 5 10 11
+    let bytes = vector("misoriented_cube.lrm"); // N + K = 12; triangles 2 3 5 10 11 reversed
     let at = section_at(&bytes, Tag::FLIP);
-    assert_eq!(payload(&bytes, Tag::FLIP), {
-        let mut p = Vec::new();
-        for x in [5u32, 2, 3, 5, 10, 11] {
-            p.extend(x.to_le_bytes());
-        }
-        p
-    });
-    let word = |f: usize, x: u32| forge(&bytes, Tag::FLIP, |p| put(p, f, x));
-    breaks(&word(0, 6), 54, "FLIP", at, "");
-    breaks(&word(0, 4), 54, "FLIP", at, "");
-    let longer = forge(&bytes, Tag::FLIP, |p| p.extend([0; 4]));
+    let bits: u16 = (1 << 2) | (1 << 3) | (1 << 5) | (1 << 10) | (1 << 11);
+    let mut want = 12u32.to_le_bytes().to_vec();
+    want.extend(bits.to_le_bytes());
+    assert_eq!(payload(&bytes, Tag::FLIP), want);
+    breaks(
+        &forge(&bytes, Tag::FLIP, |p| put(p, 0, 13)),
+        54,
+        "FLIP",
+        at,
+        "the mesh has 12",
+    );
+    let longer = forge(&bytes, Tag::FLIP, |p| p.push(0));
     breaks(&longer, 54, "FLIP", at, "");
-    // Out of range, a repeat, a decrease.
-    breaks(&word(20, 12), 54, "FLIP", at + 20, "the mesh has 12");
-    breaks(&word(8, 2), 54, "FLIP", at + 8, "not increasing");
-    breaks(&word(12, 1), 54, "FLIP", at + 12, "not increasing");
-    // None is valid, and then nothing is reversed.
-    let none = forge(&bytes, Tag::FLIP, |p| p.truncate(0));
-    let none = forge(&none, Tag::FLIP, |p| p.extend(0u32.to_le_bytes()));
+    let shorter = forge(&bytes, Tag::FLIP, |p| {
+        p.pop();
+    });
+    breaks(&shorter, 54, "FLIP", at, "");
+    // A padding bit: triangle 12 of 12.
+    let padding = forge(&bytes, Tag::FLIP, |p| p[5] |= 1 << 4);
+    breaks(&padding, 54, "FLIP", at + 5, "padding");
+    // No bit set is valid, and then nothing is reversed.
+    let none = forge(&bytes, Tag::FLIP, |p| {
+        p[4] = 0;
+        p[5] = 0;
+    });
     let limits = lrmesh::read::Limits::default();
     let reversed = lrmesh::read::open_verified(&bytes, &limits)
         .unwrap()

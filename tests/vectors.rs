@@ -132,11 +132,12 @@ fn listing(name: &str, bytes: &[u8]) -> String {
             }
         }
     }
-    // Section FLIP (FORMAT.md §3.11): u32 F, then the F reversed output triangles.
+    // Section FLIP (FORMAT.md §3.11): u32 T, then a bit per output triangle.
     if let Some(flip) = view.sections.section(lrmesh::format::Tag::FLIP) {
-        let words: Vec<String> = flip.bytes[4..]
-            .chunks_exact(4)
-            .map(|w| u32::from_le_bytes(w.try_into().unwrap()).to_string())
+        let bits = &flip.bytes[4..];
+        let words: Vec<String> = (0..8 * bits.len())
+            .filter(|&j| bits[j / 8] >> (j % 8) & 1 == 1)
+            .map(|j| j.to_string())
             .collect();
         writeln!(
             out,

@@ -450,8 +450,8 @@ pub mod perm {
     pub const HEADER_LEN: usize = 8;
 }
 
-/// `FLIP` (§3.11): u32 `F`, then `F` u32.
+/// `FLIP` (§3.11): u32 `T`, then a bit per output triangle.
 pub mod flip {
-    /// Bytes before the triangle indices.
+    /// Bytes before the bits.
     pub const HEADER_LEN: usize = 4;
 }

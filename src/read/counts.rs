@@ -268,32 +268,28 @@ pub(super) fn perm<'a>(
     Ok(Some((vertices, triangles)))
 }
 
-/// The reversed triangles of `FLIP`, if present, among `t` output triangles ([V54]):
-/// strictly increasing indices below `t`.
-pub(super) fn flips<'a>(sections: &Sections<'a>, t: u64) -> Result<Option<LeWords<'a>>> {
+/// The reversed output triangles of `FLIP`, if present, among `t` output triangles
+/// ([V54]): u32 `T = t`, then a bit per triangle, increasing.
+pub(super) fn flips(sections: &Sections, t: u64) -> Result<Option<Vec<u32>>> {
     let Some(section) = sections.section(Tag::FLIP) else {
         return Ok(None);
     };
     let f = Fields::new(*section);
     let rule = Rule(54);
     let count = f.u32(0, rule)?;
-    let at = layout::flip::HEADER_LEN;
-    f.expect_len(Some(at as u64 + 4 * count as u64), rule)?;
-    let words = LeWords(&section.bytes[at..]);
-    let mut floor = 0u64;
-    for i in 0..words.count() {
-        let j = words.at(i) as u64;
-        if j < floor || j >= t {
-            let why = if j >= t {
-                format!("triangle {j} reversed, the mesh has {t}")
-            } else {
-                format!("triangle {j} after triangle {}: not increasing", floor - 1)
-            };
-            return Err(f.err(at + 4 * i, rule, why));
-        }
-        floor = j + 1;
+    if count as u64 != t {
+        return Err(f.err(0, rule, format!("{count} triangles, the mesh has {t}")));
     }
-    Ok(Some(words))
+    let at = layout::flip::HEADER_LEN;
+    f.expect_len(Some(at as u64 + t.div_ceil(8)), rule)?;
+    let bits = &section.bytes[at..];
+    if t % 8 != 0 && bits[bits.len() - 1] >> (t % 8) != 0 {
+        return Err(f.err(f.len() - 1, rule, "padding bits are not 0"));
+    }
+    let reversed = (0..t as u32)
+        .filter(|&j| bits[(j / 8) as usize] >> (j % 8) & 1 == 1)
+        .collect();
+    Ok(Some(reversed))
 }
 
 fn check_permutation(f: &Fields, at: usize, words: LeWords) -> Result<()> {

@@ -113,9 +113,8 @@ impl Container<'_> {
             attributes,
             parts,
         };
-        if let Some(flips) = self.flips {
-            let flipped: Vec<usize> = (0..flips.count()).map(|i| flips.at(i) as usize).collect();
-            unflip(&mut mesh, &flipped);
+        if let Some(flips) = &self.flips {
+            unflip(&mut mesh, flips);
         }
         if let Some((vertices, tris)) = self.perm {
             mesh = reorder(mesh, vertices, tris);
@@ -126,8 +125,8 @@ impl Container<'_> {
 
 /// Reverses the output triangles `flipped` back to the input's orientation (FORMAT.md §4
 /// step 4): `[a, b, c]` becomes `[a, c, b]`, per-corner values following their corners.
-fn unflip(mesh: &mut Mesh, flipped: &[usize]) {
-    for &t in flipped {
+fn unflip(mesh: &mut Mesh, flipped: &[u32]) {
+    for t in flipped.iter().map(|&t| t as usize) {
         mesh.triangles[t].swap(1, 2);
         for a in &mut mesh.attributes {
             if let Some(corners) = &mut a.corners {

@@ -269,7 +269,7 @@ impl Container<'_> {
             attribute_details,
             parts: self.parts().map(|p| p.labels.parts.len() as u32),
             keeps_order: self.perm.is_some(),
-            reversed_triangles: self.flips.map_or(0, |f| f.count() as u32),
+            reversed_triangles: self.flips.as_ref().map_or(0, |f| f.len() as u32),
             metadata: self.metadata.clone(),
         }
     }

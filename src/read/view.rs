@@ -158,7 +158,7 @@ pub struct Container<'a> {
     /// Vertex then triangle permutations to the input order.
     pub(super) perm: Option<(LeWords<'a>, LeWords<'a>)>,
     /// Output triangles the writer reversed (`FLIP`), increasing.
-    pub(super) flips: Option<LeWords<'a>>,
+    pub(super) flips: Option<Vec<u32>>,
     pub(super) output_vertices: u32,
     pub(super) triangles: u32,
 }

@@ -413,14 +413,15 @@ fn sections(
         // Output triangles (FORMAT.md §4 step 2, before PERM): the connectivity's, then kept.
         let inputs = encoded.input_triangle.iter().copied();
         let inputs = inputs.chain(kept.iter().map(|&(input, _)| input));
-        let reversed: Vec<u32> = (0u32..)
-            .zip(inputs)
-            .filter(|&(_, input)| flipped[input as usize])
-            .map(|(j, _)| j)
-            .collect();
         let mut p = Vec::new();
-        write_fields(&mut p, &[reversed.len() as u32]);
-        write_fields(&mut p, &reversed);
+        write_fields(&mut p, &[triangle_total as u32]);
+        let mut bits = vec![0u8; triangle_total.div_ceil(8)];
+        for (j, input) in inputs.enumerate() {
+            if flipped[input as usize] {
+                bits[j / 8] |= 1 << (j % 8);
+            }
+        }
+        p.extend(bits);
         sections.push((Tag::FLIP, Flags::REQUIRED, p));
     }
     Ok(sections)
