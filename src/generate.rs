@@ -118,6 +118,93 @@ pub fn irregular_torus(min_triangles: u32, seed: u64) -> Mesh {
     mesh
 }
 
+/// A closed sphere (genus 0) of `2 * around * (along - 1)` triangles: `along - 1` rings of
+/// `around` vertices between two poles. `around` must be at least 3, `along` at least 2.
+pub fn sphere(around: u32, along: u32) -> Mesh {
+    assert!(around >= 3 && along >= 2, "a sphere grid needs 3 x 2 cells");
+    let rings = along - 1;
+    let mut positions = vec![[0.0, 0.0, 1.0], [0.0, 0.0, -1.0]];
+    for i in 1..along {
+        let polar = i as f32 / along as f32 * std::f32::consts::PI;
+        for j in 0..around {
+            let w = j as f32 / around as f32 * std::f32::consts::TAU;
+            positions.push([polar.sin() * w.cos(), polar.sin() * w.sin(), polar.cos()]);
+        }
+    }
+    let id = |i: u32, j: u32| 2 + i * around + j % around;
+    let mut triangles = Vec::with_capacity(2 * (around * rings) as usize);
+    for j in 0..around {
+        triangles.push([0, id(0, j), id(0, j + 1)]);
+        triangles.push([1, id(rings - 1, j + 1), id(rings - 1, j)]);
+    }
+    for i in 0..rings - 1 {
+        for j in 0..around {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            triangles.push([a, b, c]);
+            triangles.push([a, c, d]);
+        }
+    }
+    Mesh::new(positions, triangles)
+}
+
+/// What [`surface`] makes (`lrmesh generate`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SurfaceOptions {
+    /// About this many triangles in all (at least 16 per component).
+    pub triangles: u64,
+    /// The genus of each component: 0 a sphere, 1 a torus, more a torus with handles.
+    pub genus: u32,
+    /// Triangles removed at random in all, each opening a hole (two side by side open one).
+    pub holes: u32,
+    /// Components, side by side along x.
+    pub components: u32,
+    /// Irregular valences: half as many edge flips as triangles, and jittered vertices.
+    pub irregular: bool,
+    /// The same seed gives the same mesh.
+    pub seed: u64,
+}
+
+/// A mesh of about `options.triangles` triangles with the topology `options` ask for.
+pub fn surface(options: &SurfaceOptions) -> Mesh {
+    let mut rng = Rng::new(options.seed);
+    let components = options.components.max(1);
+    let each = (options.triangles / components as u64).max(16);
+    let mut mesh = Mesh::default();
+    for k in 0..components {
+        let mut part = match options.genus {
+            0 => {
+                // 2 * around * (along - 1) triangles, around = 2 * along.
+                let along = (((each / 4) as f64).sqrt().round() as u32).max(2);
+                let around = (each / (2 * (along as u64 - 1))).max(3) as u32;
+                sphere(around, along)
+            }
+            _ => {
+                let cells = each.div_ceil(2);
+                let along = ((cells as f64).sqrt().ceil() as u32).max(3);
+                let around = (cells.div_ceil(along as u64) as u32).max(3);
+                torus(around, along)
+            }
+        };
+        if options.irregular {
+            let flips = part.triangles.len() / 2;
+            flip_edges(&mut part, flips, &mut rng);
+            let step = 0.2 / (part.triangles.len() as f32).sqrt();
+            jitter(&mut part, step, &mut rng);
+        }
+        add_random_handles(
+            &mut part,
+            options.genus.saturating_sub(1) as usize,
+            &mut rng,
+        );
+        for p in &mut part.positions {
+            p[0] += 3.0 * k as f32;
+        }
+        append(&mut mesh, &part);
+    }
+    punch_holes(&mut mesh, options.holes as usize, &mut rng);
+    mesh
+}
+
 /// Appends `other` to `mesh` as a separate component.
 pub fn append(mesh: &mut Mesh, other: &Mesh) {
     let base = mesh.positions.len() as u32;

@@ -326,3 +326,57 @@ fn completions_and_man_page() {
         assert!(man.contains(&format!("lrmesh-{command}")), "{command}");
     }
 }
+
+#[test]
+fn generate_makes_the_topology_asked_for() {
+    for (genus, holes, components, irregular) in [
+        (0, 0, 1, false),
+        (1, 0, 2, true),
+        (3, 4, 1, true),
+        (2, 0, 3, false),
+    ] {
+        let out = scratch(&format!("generated-{genus}-{holes}-{components}.ply"));
+        let out = out.to_str().unwrap();
+        let (g, h, k) = (genus.to_string(), holes.to_string(), components.to_string());
+        let mut args = vec![
+            "generate",
+            out,
+            "--triangles",
+            "6000",
+            "--genus",
+            &g,
+            "--holes",
+            &h,
+            "--components",
+            &k,
+            "--json",
+        ];
+        if irregular {
+            args.push("--irregular");
+        }
+        let written = json(&ok(&lrmesh(&args)).stdout);
+        let info = json(&ok(&lrmesh(&["info", out, "--json"])).stdout);
+        let what = format!("genus {genus}, holes {holes}, components {components}: {info}");
+        assert_eq!(info["triangles"], written["triangles"], "{what}");
+        let t = info["triangles"].as_u64().unwrap();
+        assert!((5400..=6600).contains(&t), "{what}");
+        assert_eq!(info["components"], components, "{what}");
+        assert_eq!(info["boundary_loops"], holes, "{what}");
+        assert_eq!(info["nonmanifold_edges"], 0, "{what}");
+        assert_eq!(info["oriented"], true, "{what}");
+        if holes == 0 {
+            // Euler characteristic of K closed surfaces of genus g: K (2 - 2g).
+            let euler = components as i64 * (2 - 2 * genus as i64);
+            assert_eq!(info["euler"], euler, "{what}");
+        }
+        let regular = info["valence6_pct"].as_f64().unwrap();
+        assert!(
+            if irregular {
+                regular < 60.0
+            } else {
+                regular > 80.0
+            },
+            "{what}"
+        );
+    }
+}

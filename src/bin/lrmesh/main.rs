@@ -9,6 +9,7 @@ mod common;
 mod convert;
 mod decode;
 mod encode;
+mod generate;
 mod info;
 mod progress;
 mod render;
@@ -47,6 +48,9 @@ enum Command {
     /// Compare the connectivity representations on one mesh in one run: sizes, build and
     /// open times, and the LR paper's Fig. 10 loops as ratios to the corner table.
     Bench(bench::Args),
+    /// Write a generated mesh of about N triangles, of a chosen genus, holes and components,
+    /// with regular or irregular valences.
+    Generate(generate::Args),
     /// Print a shell's completion script (bash, zsh, fish, elvish, powershell).
     Completions(shell::CompletionsArgs),
     /// Print the man page (roff), with a section for every command.
@@ -63,6 +67,7 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
         Command::Convert(args) => convert::run(args),
         Command::Render(args) => render::run(args),
         Command::Bench(args) => bench::run(args),
+        Command::Generate(args) => generate::run(args),
         Command::Completions(args) => shell::completions(args),
         Command::Man(args) => shell::man(args),
     }

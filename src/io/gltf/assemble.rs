@@ -340,6 +340,13 @@ impl<'d> Builder<'d> {
             warnings.push("the scene holds no triangle primitive: the mesh is empty".into());
         }
         let any_label = self.parts.parts.iter().any(|p| *p != Part::default());
+        // Without a vertex, an attribute holds no value (a primitive of empty accessors):
+        // it says nothing, and no file could store it.
+        let attributes = if self.positions.is_empty() {
+            Vec::new()
+        } else {
+            attributes
+        };
         Ok(Mesh {
             positions: self.positions,
             triangles: self.triangles,
