@@ -81,12 +81,9 @@ impl Bit {
             RATE_LIMIT
         };
         let p = self.p as u32;
-        let p = if bit == 0 {
-            p + ((P_MAX - p) >> shift)
-        } else {
-            p - ((p - P_MIN) >> shift)
-        };
-        self.p = p as u16;
+        let towards_zero = p + ((P_MAX - p) >> shift);
+        let towards_one = p - ((p - P_MIN) >> shift);
+        self.p = if bit == 0 { towards_zero } else { towards_one } as u16;
     }
 }
 
@@ -260,27 +257,22 @@ impl Bits for Decoder<'_> {
     #[inline(always)]
     fn bit(&mut self, m: &mut Bit, _bit: u32) -> u32 {
         let bound = (self.range >> 16) * m.p0();
-        let bit = if self.code < bound {
-            self.range = bound;
-            0
-        } else {
-            self.code -= bound;
-            self.range -= bound;
-            1
-        };
+        // Without a branch: an adaptive decision is as hard to predict as its probability.
+        let bit = (self.code >= bound) as u32;
+        let mask = bit.wrapping_neg();
+        self.code -= bound & mask;
+        self.range = (bound & !mask) | (self.range.wrapping_sub(bound) & mask);
         m.update(bit);
         self.normalize();
         bit
     }
 
+    #[inline(always)]
     fn raw(&mut self, _bit: u32) -> u32 {
         self.range >>= 1;
-        let bit = if self.code < self.range {
-            0
-        } else {
-            self.code -= self.range;
-            1
-        };
+        // Without a branch: raw bits are coin flips.
+        let bit = (self.code >= self.range) as u32;
+        self.code -= self.range & bit.wrapping_neg();
         self.normalize();
         bit
     }
