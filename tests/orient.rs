@@ -183,3 +183,18 @@ fn the_forging_fuzz_targets_reach_flip() {
         assert!(sections.section(Tag::FLIP).is_some(), "choice {choice:#x}");
     }
 }
+
+#[test]
+fn encoding_an_oriented_mesh_gives_the_same_bytes() {
+    // `encode_oriented` spares a caller who oriented already (to report it) a second pass.
+    let mesh = shuffled();
+    let o = orient(&mesh);
+    for orient_option in [Orient::Repair, Orient::RepairAndKeep] {
+        let options = options(Connectivity::Edgebreaker, true, orient_option);
+        assert_eq!(
+            lrmesh::write::encode_oriented(&o, &options).unwrap(),
+            encode(&mesh, &options).unwrap(),
+            "{orient_option:?}"
+        );
+    }
+}

@@ -129,14 +129,21 @@ pub fn orient(mesh: &Mesh) -> Oriented {
 pub fn reversed(mesh: &Mesh, flipped: &[bool]) -> Mesh {
     let mut out = mesh.clone();
     for (t, _) in flipped.iter().enumerate().filter(|(_, &f)| f) {
-        out.triangles[t].swap(1, 2);
-        for a in &mut out.attributes {
-            if let Some(corners) = &mut a.corners {
-                corners.swap(3 * t + 1, 3 * t + 2);
-            }
-        }
+        reverse_triangle(&mut out, t);
     }
     out
+}
+
+/// Reverses triangle `t` of `mesh` in place: `[a, b, c]` becomes `[a, c, b]`, and the
+/// per-corner values of corners 1 and 2 trade places with them. The one place that does it,
+/// for [`reversed`] and for the reader's section `FLIP`.
+pub(crate) fn reverse_triangle(mesh: &mut Mesh, t: usize) {
+    mesh.triangles[t].swap(1, 2);
+    for a in &mut mesh.attributes {
+        if let Some(corners) = &mut a.corners {
+            corners.swap(3 * t + 1, 3 * t + 2);
+        }
+    }
 }
 
 #[cfg(test)]

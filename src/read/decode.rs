@@ -114,25 +114,15 @@ impl Container<'_> {
             parts,
         };
         if let Some(flips) = &self.flips {
-            unflip(&mut mesh, flips);
+            // FORMAT.md §4 step 4: back to the input's orientation.
+            for &t in flips {
+                crate::mesh::reverse_triangle(&mut mesh, t as usize);
+            }
         }
         if let Some((vertices, tris)) = self.perm {
             mesh = reorder(mesh, vertices, tris);
         }
         mesh
-    }
-}
-
-/// Reverses the output triangles `flipped` back to the input's orientation (FORMAT.md §4
-/// step 4): `[a, b, c]` becomes `[a, c, b]`, per-corner values following their corners.
-fn unflip(mesh: &mut Mesh, flipped: &[u32]) {
-    for t in flipped.iter().map(|&t| t as usize) {
-        mesh.triangles[t].swap(1, 2);
-        for a in &mut mesh.attributes {
-            if let Some(corners) = &mut a.corners {
-                corners.swap(3 * t + 1, 3 * t + 2);
-            }
-        }
     }
 }
 

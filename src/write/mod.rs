@@ -16,6 +16,7 @@ use crate::error::{Error, Result};
 use crate::format::layout::{write_fields, MeshRecord};
 use crate::format::{Flags, Metadata, Tag};
 use crate::lr::{CompactLr, CompactOptions, Lr, LrOptions};
+use crate::mesh::Oriented;
 use crate::strips::{Cts, StripOptions};
 use crate::Mesh;
 use connectivity::Encoded;
@@ -158,37 +159,7 @@ pub enum Built<'a> {
 /// [`Error::InvalidMesh`] for a mesh that breaks [`Mesh::validate`];
 /// [`Error::Unsupported`] when it exceeds the representation's limits.
 pub fn encode(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<u8>> {
-    mesh.validate()?;
-    let oriented = oriented(mesh, options);
-    let (mesh, flipped) = as_encoded(mesh, &oriented, options);
-    let table = CornerTable::from_mesh(mesh)?;
-    Ok(assemble(&sections(
-        mesh,
-        Built::Table(&table),
-        options,
-        flipped,
-    )?))
-}
-
-/// The mesh oriented as `options` ask, if they do.
-fn oriented(mesh: &Mesh, options: &EncodeOptions) -> Option<crate::mesh::Oriented> {
-    (options.orient != Orient::AsGiven).then(|| crate::mesh::orient(mesh))
-}
-
-/// The mesh to encode (`mesh`, or its oriented copy) and the triangles to record in
-/// `FLIP`, if any.
-fn as_encoded<'m>(
-    mesh: &'m Mesh,
-    oriented: &'m Option<crate::mesh::Oriented>,
-    options: &EncodeOptions,
-) -> (&'m Mesh, Option<&'m [bool]>) {
-    match oriented {
-        Some(o) => {
-            let record = options.orient == Orient::Repair && o.flipped_count() > 0;
-            (&o.mesh, record.then_some(o.flipped.as_slice()))
-        }
-        None => (mesh, None),
-    }
+    Ok(assemble(&table_sections(mesh, options)?))
 }
 
 /// Encodes `mesh` into `out` (a file, a socket, a buffer), as [`encode`].
@@ -200,15 +171,43 @@ pub fn encode_to(
     mesh: &Mesh,
     options: &EncodeOptions,
 ) -> Result<()> {
-    mesh.validate()?;
-    let oriented = oriented(mesh, options);
-    let (mesh, flipped) = as_encoded(mesh, &oriented, options);
-    let table = CornerTable::from_mesh(mesh)?;
-    let sections = sections(mesh, Built::Table(&table), options, flipped)?;
+    let sections = table_sections(mesh, options)?;
     write_sections(out, &sections).map_err(|source| Error::Io {
         path: Default::default(),
         source,
     })
+}
+
+/// Encodes the repaired mesh of `oriented` ([`crate::mesh::orient`] of the mesh to store),
+/// as [`encode`] with an [`Orient`] option does, for a caller that has oriented the mesh
+/// already (to report what changed) and need not do it twice: its reversed triangles go to
+/// `FLIP` when `options.orient` is [`Orient::Repair`], and nowhere otherwise.
+///
+/// # Errors
+/// As [`encode`].
+pub fn encode_oriented(oriented: &Oriented, options: &EncodeOptions) -> Result<Vec<u8>> {
+    Ok(assemble(&oriented_sections(oriented, options)?))
+}
+
+/// Every section of `mesh`, with its corner table built here, oriented first when `options`
+/// ask.
+fn table_sections(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<SectionBytes>> {
+    mesh.validate()?;
+    if options.orient != Orient::AsGiven {
+        return oriented_sections(&crate::mesh::orient(mesh), options);
+    }
+    let table = CornerTable::from_mesh(mesh)?;
+    sections(mesh, Built::Table(&table), options, None)
+}
+
+/// Every section of the repaired mesh of `oriented`, with `FLIP` as [`encode_oriented`] says.
+fn oriented_sections(oriented: &Oriented, options: &EncodeOptions) -> Result<Vec<SectionBytes>> {
+    let mesh = &oriented.mesh;
+    mesh.validate()?;
+    let record = options.orient == Orient::Repair && oriented.flipped_count() > 0;
+    let flipped = record.then_some(oriented.flipped.as_slice());
+    let table = CornerTable::from_mesh(mesh)?;
+    sections(mesh, Built::Table(&table), options, flipped)
 }
 
 /// Encodes `mesh` with a connectivity already built from it (`built` must come from this

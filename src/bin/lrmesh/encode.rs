@@ -147,17 +147,23 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
         .then(|| args.input.path.file_name())
         .flatten()
         .map(|n| n.to_string_lossy().into_owned());
-    let orientation = args.orient.then(|| {
-        let o = lrmesh::mesh::orient(&mesh);
-        Orientation {
-            reversed_triangles: o.flipped_count(),
-            conflicts: o.conflicts,
-            recorded: !args.keep_repaired && o.flipped_count() > 0,
-        }
+    // Oriented here once, for the report and for the writer.
+    let oriented = args.orient.then(|| lrmesh::mesh::orient(&mesh));
+    let orientation = oriented.as_ref().map(|o| Orientation {
+        reversed_triangles: o.flipped_count(),
+        conflicts: o.conflicts,
+        recorded: !args.keep_repaired && o.flipped_count() > 0,
     });
-    let hints = hints(&mesh, args.orient, args.input.weld);
+    let hints = hints(
+        &lrmesh::TopologyReport::of(&mesh),
+        args.orient,
+        args.input.weld,
+    );
     let started = Instant::now();
-    let bytes = progress::step("encoding", || write::encode(&mesh, &options))?;
+    let bytes = progress::step("encoding", || match &oriented {
+        Some(o) => write::encode_oriented(o, &options),
+        None => write::encode(&mesh, &options),
+    })?;
     let encode_ms = ms(started.elapsed());
     let output = &args.output;
     let started = Instant::now();
