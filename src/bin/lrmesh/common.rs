@@ -99,6 +99,18 @@ fn stdin_bytes() -> lrmesh::Result<Vec<u8>> {
     Ok(bytes)
 }
 
+/// The format of `bytes` read from standard input: `format`, or without it a container
+/// recognised by its first bytes (nothing else is).
+fn stdin_format(bytes: &[u8], format: Option<Format>) -> lrmesh::Result<MeshFormat> {
+    match format {
+        Some(f) => Ok(f.into()),
+        None if bytes.starts_with(&lrmesh::format::MAGIC) => Ok(MeshFormat::Lrm),
+        None => Err(Error::InvalidArgument(
+            "a mesh on standard input needs --format (obj, off, ply, stl, gltf or glb)".into(),
+        )),
+    }
+}
+
 /// The bytes of a container: a mapped file, or standard input read whole.
 pub enum Bytes {
     Mapped(memmap2::Mmap),
@@ -134,12 +146,8 @@ impl MeshInput {
         };
         if is_stdio(&self.path) && self.format.is_none() {
             let bytes = stdin_bytes()?;
-            if bytes.starts_with(&lrmesh::format::MAGIC) {
-                return Ok(Some(Bytes::Read(bytes)));
-            }
-            return Err(Error::InvalidArgument(
-                "a mesh on standard input needs --format (obj, off, ply, stl, gltf or glb)".into(),
-            ));
+            stdin_format(&bytes, None)?;
+            return Ok(Some(Bytes::Read(bytes)));
         }
         if named {
             return read_container(&self.path).map(Some);
@@ -157,16 +165,9 @@ impl MeshInput {
                 io::read_mesh_bytes(bytes, format, &options).map_err(|e| e.with_file(path))
             };
             match (is_stdio(path), self.format) {
-                (true, Some(f)) => from_bytes(&stdin_bytes()?, f.into()),
-                (true, None) => {
+                (true, format) => {
                     let bytes = stdin_bytes()?;
-                    if bytes.starts_with(&lrmesh::format::MAGIC) {
-                        return from_bytes(&bytes, MeshFormat::Lrm);
-                    }
-                    Err(Error::InvalidArgument(
-                        "a mesh on standard input needs --format (obj, off, ply, stl, gltf or glb)"
-                            .into(),
-                    ))
+                    from_bytes(&bytes, stdin_format(&bytes, format)?)
                 }
                 (false, Some(f)) if MeshFormat::from_path(path).ok() != Some(f.into()) => {
                     let bytes = std::fs::read(path).map_err(|source| Error::Io {

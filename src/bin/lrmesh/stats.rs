@@ -4,7 +4,7 @@
 use lrmesh::edgebreaker::EdgebreakerStats;
 use lrmesh::lr::{CompactLr, CompactOptions, Lr, LrOptions, LrStats};
 use lrmesh::strips::{StripOptions, StripStats};
-use lrmesh::{CornerTable, Mesh, TopologyReport};
+use lrmesh::{CornerTable, TopologyReport};
 
 use crate::common::{show, show_json, MeshInput};
 use crate::progress;
@@ -41,8 +41,7 @@ pub fn compact_periods(period: Option<u32>) -> Vec<u32> {
 /// One-line hints at what makes the representations larger than the mesh needs, each
 /// naming the option that helps (not given when that option is on): edges two triangles use
 /// in the same direction (`--orient`), vertices that repeat another's position (`--weld`).
-pub fn hints(mesh: &Mesh, orient: bool, weld: bool) -> Vec<String> {
-    let report = TopologyReport::of(mesh);
+pub fn hints(report: &TopologyReport, orient: bool, weld: bool) -> Vec<String> {
     let mut out = Vec::new();
     if !orient && report.inconsistent_edges > 0 {
         out.push(format!(
@@ -63,7 +62,9 @@ pub fn hints(mesh: &Mesh, orient: bool, weld: bool) -> Vec<String> {
 
 pub fn run(args: Args) -> lrmesh::Result<()> {
     let mesh = args.input.load()?;
-    let hints = hints(&mesh, args.orient, args.input.weld);
+    // Of the mesh as read: valences count undirected edges, so orienting changes none.
+    let report = TopologyReport::of(&mesh);
+    let hints = hints(&report, args.orient, args.input.weld);
     let mesh = if args.orient {
         lrmesh::mesh::orient(&mesh).mesh
     } else {
@@ -73,7 +74,6 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
         tries: args.tries,
         seed: args.seed,
     };
-    let report = TopologyReport::of(&mesh);
     let table = progress::step("building the corner table", || {
         CornerTable::from_mesh(&mesh)
     })?;
