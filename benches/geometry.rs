@@ -1,8 +1,9 @@
 //! Whole-file encode and decode of an Edgebreaker container with its positions, the lrmesh
 //! side of `scripts/geometry-compare.sh` (Draco's side: `scripts/draco_bench/draco_bench.cc`).
 //!
-//! `cargo bench --bench geometry -- MESH BITS [RUNS]`, or the bench binary itself with the
-//! same arguments. BITS is `--quantize-position` (1 to 30), 0 for lossless f32 positions.
+//! `cargo bench --bench geometry -- MESH BITS [RUNS [LEVEL]]`, or the bench binary itself with
+//! the same arguments. BITS is `--quantize-position` (1 to 30), 0 for lossless f32 positions;
+//! LEVEL is `-l` (default 6).
 //!
 //! - encode: [`lrmesh::write::encode`] of the mesh as read (validation, corner table,
 //!   Edgebreaker, positions, assembly), default level: as `lrmesh encode --connectivity
@@ -36,17 +37,19 @@ fn main() {
         .filter(|a| !a.starts_with("--"))
         .collect();
     let [path, bits, rest @ ..] = args.as_slice() else {
-        eprintln!("usage: geometry MESH BITS [RUNS]   (BITS 0: lossless f32)");
+        eprintln!("usage: geometry MESH BITS [RUNS [LEVEL]]   (BITS 0: lossless f32)");
         std::process::exit(2);
     };
     let bits: u8 = bits.parse().expect("BITS: 0 to 30");
     let runs: usize = rest.first().map_or(11, |r| r.parse().expect("RUNS"));
+    let level: u8 = rest.get(1).map_or(6, |l| l.parse().expect("LEVEL: 0 to 9"));
     let mesh = read_mesh(Path::new(path), &ReadOptions::default())
         .expect("the mesh")
         .mesh;
     let options = EncodeOptions {
         connectivity: Connectivity::Edgebreaker,
         position_bits: (bits > 0).then_some(bits),
+        level,
         ..EncodeOptions::default()
     };
     let limits = Limits::default();

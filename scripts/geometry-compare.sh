@@ -8,7 +8,8 @@
 # Sizes, at 11, 14 and 16 bits per coordinate and lossless ("f32"):
 # - lrmesh: `lrmesh encode --connectivity edgebreaker [--quantize-position N]` (default
 #   level), split by `lrmesh info --json` into connectivity (EBRK, with COPY/COPC and KEPT/KEPC when the
-#   mesh needs them), positions (GEOM) and the rest (header, section table, META, MESH);
+#   mesh needs them), positions (GEOM) and the rest (header, section table, META, MESH); and
+#   on a grid also at `-l 1` (positions in the anchored grid, GEOM encoding 6: fast decoding);
 # - Draco: `draco_encoder -cl 10 -qp N` (-qp 0: no quantization) on the mesh as
 #   `lrmesh convert` writes it to PLY, split into the bytes up to the end of the connectivity
 #   and the attribute data (scripts/draco_bench/draco_bench.cc);
@@ -29,7 +30,7 @@
 # triangles/s, median of RUNS runs, the best of ROUNDS rounds (the programs alternate, mesh by
 # mesh, which damps the noise of a shared machine):
 # - lrmesh (benches/geometry.rs): `read::open` + `Container::to_mesh`; `write::encode` of the
-#   mesh as read;
+#   mesh as read; at the default level and, on a grid, at level 1;
 # - Draco (draco_bench.cc): `DecodeMeshFromBuffer` + faces and every attribute per point into
 #   arrays; `Encoder::EncodeMeshToBuffer` with draco_encoder's settings for -cl 10 -qp N, on
 #   the mesh as Draco's PLY reader loads it (checked: the same bytes as the tool's file).
@@ -118,7 +119,7 @@ qname() { if [ "$1" = 0 ]; then echo f32; else echo "$1 bits"; fi; }
 # needs), dt dc (Draco total, bytes up to the connectivity's end), ct (OpenCTM), mt mi mv mg mz
 # (meshopt total, index, vertex, gzip, zstd).
 # Bytes per triangle and per vertex divide by the mesh's own counts (`lrmesh info`).
-declare -A lt lg lc dt dc ct mt mi mv mg mz side lr16 lr16_0 lerr
+declare -A lt lg lc dt dc ct mt mi mv mg mz side lr16 lr16_0 lerr l1t
 # Bytes of the sections of info.json $1 whose tags are among $2 (space separated).
 section() {
   jq -r --arg t "$2" \
@@ -144,6 +145,12 @@ for m in "${meshes[@]}"; do
     else
       lt[$k]=- lg[$k]=- lc[$k]=-
       say "  lrmesh at $(qname "$q") failed: $(head -c 200 "$work/err" | tr '\n' ' ')"
+    fi
+    # lrmesh at level 1 (on a grid)
+    l1t[$k]=-
+    if [ "$q" != 0 ] && "$lrmesh" encode "$m" -o "$f.l1" --connectivity edgebreaker \
+      "${opt[@]}" -l 1 >/dev/null 2>"$work/err"; then
+      l1t[$k]=$(stat -c %s "$f.l1")
     fi
     # Draco
     d=$work/$name.$q.drc
@@ -184,7 +191,7 @@ for m in "${meshes[@]}"; do
 done
 
 # Timing.
-declare -A ld le dd de derr
+declare -A ld le dd de derr ld1 le1
 max() {
   if [ "${1:--}" = - ]; then
     echo "$2"
@@ -222,6 +229,12 @@ if [ "$runs" -gt 0 ]; then
           ld[$k]=- le[$k]=-
           say "  lrmesh bench at $(qname "$q") failed:" \
             "$(grep -m1 -i -E 'panicked|error' "$work/err" || true)"
+        fi
+        if [ "$q" != 0 ] && line=$("$bench" "$m" "$q" "$runs" 1 2>"$work/err"); then
+          ld1[$k]=$(max "${ld1[$k]:-}" "$(kv "$line" dec_mtps)")
+          le1[$k]=$(max "${le1[$k]:-}" "$(kv "$line" enc_mtps)")
+        else
+          ld1[$k]=${ld1[$k]:--} le1[$k]=${le1[$k]:--}
         fi
       done
       flock -u 9
@@ -262,23 +275,26 @@ median_row() {
 
 # Sizes, one table per precision. Columns: 1 mesh, 2 triangles, 3 lrmesh, 4 lrm conn,
 # 5 lrm pos, 6 Draco, 7 Draco conn, 8 Draco pos, 9 lrm/Draco, 10 OpenCTM, 11 CTM/Draco,
-# 12 meshopt, 13 mo idx, 14 mo vtx, 15 mo+gzip, 16 mo+zstd, 17 mo+zstd/Draco.
+# 12 meshopt, 13 mo idx, 14 mo vtx, 15 mo+gzip, 16 mo+zstd, 17 mo+zstd/Draco, 18 lrmesh -l 1,
+# 19 -l 1/Draco.
 for q in "${qps[@]}"; do
   f=$work/size.$q.tsv
   {
     row mesh triangles lrmesh "lrm conn" "lrm pos" Draco "Draco conn" "Draco pos" "lrm/Draco" \
-      OpenCTM "CTM/Draco" meshopt "mo idx" "mo vtx" "mo+gzip" "mo+zstd" "mo+zstd/Draco"
+      OpenCTM "CTM/Draco" meshopt "mo idx" "mo vtx" "mo+gzip" "mo+zstd" "mo+zstd/Draco" \
+      "lrm -l 1" "-l 1/Draco"
     for m in "${meshes[@]}"; do
       name=$(basename "$m")
       k=$name,$q
       t=${T[$name]}
       total=$(bpt "${lt[$k]}" "$t") draco=$(bpt "${dt[$k]}" "$t") ctm=$(bpt "${ct[$k]}" "$t")
-      zst=$(bpt "${mz[$k]}" "$t")
+      zst=$(bpt "${mz[$k]}" "$t") l1=$(bpt "${l1t[$k]}" "$t")
       row "$name" "$t" "$total" "$(bpt "${lc[$k]}" "$t")" "$(bpt "${lg[$k]}" "$t")" \
         "$draco" "$(bpt "${dc[$k]}" "$t")" "$(bpt "$((dt[$k] - dc[$k]))" "$t")" \
         "$(ratio "$total" "$draco")" "$ctm" "$(ratio "$ctm" "$draco")" \
         "$(bpt "${mt[$k]}" "$t")" "$(bpt "${mi[$k]}" "$t")" "$(bpt "${mv[$k]}" "$t")" \
-        "$(bpt "${mg[$k]}" "$t")" "$zst" "$(ratio "$zst" "$draco")"
+        "$(bpt "${mg[$k]}" "$t")" "$zst" "$(ratio "$zst" "$draco")" "$l1" \
+        "$(ratio "$l1" "$draco")"
     done
   } >"$f"
   median_row "$f" >>"$f"
@@ -311,6 +327,7 @@ if [ "$runs" -gt 0 ]; then
       for q in "${qps[@]}"; do
         n=$(qname "$q" | tr -d ' ')
         hdr+=("lrm $n" "Draco $n" "ratio $n")
+        [ "$q" = 0 ] || hdr+=("lrm -l1 $n" "ratio -l1 $n")
       done
       row "${hdr[@]}"
       for m in "${meshes[@]}"; do
@@ -320,6 +337,10 @@ if [ "$runs" -gt 0 ]; then
           k=$name,$q
           if [ "$what" = dec ]; then a=${ld[$k]} b=${dd[$k]}; else a=${le[$k]} b=${de[$k]}; fi
           cells+=("$a" "$b" "$(ratio "$a" "$b")")
+          if [ "$q" != 0 ]; then
+            if [ "$what" = dec ]; then a=${ld1[$k]}; else a=${le1[$k]}; fi
+            cells+=("$a" "$(ratio "$a" "$b")")
+          fi
         done
         row "${cells[@]}"
       done
@@ -334,11 +355,11 @@ if [ "$markdown" = 1 ]; then
   f=$work/summary.tsv
   {
     row precision lrmesh Draco OpenCTM meshopt "meshopt+zstd" "lrmesh/Draco" "OpenCTM/Draco" \
-      "meshopt+zstd/Draco"
+      "meshopt+zstd/Draco" "lrmesh -l 1" "-l 1/Draco"
     for q in "${qps[@]}"; do
       IFS=$'\t' read -r -a c <<<"$(tail -1 "$work/size.$q.tsv")"
       row "$(qname "$q")" "${c[2]}" "${c[5]}" "${c[9]}" "${c[11]}" "${c[15]}" "${c[8]}" "${c[10]}" \
-        "${c[16]}"
+        "${c[16]}" "${c[17]}" "${c[18]}"
     done
   } >"$f"
   heading "Whole files, bytes per triangle, median over ${#meshes[@]} CGAL meshes" \
@@ -351,7 +372,7 @@ if [ "$markdown" = 1 ]; then
     else
       heading "$q bits per coordinate, bytes per triangle (Draco -cl 10 -qp $q)"
     fi
-    render "$work/size.$q.tsv" 1-10,12,16
+    render "$work/size.$q.tsv" 1-10,12,16,18,19
   done
   heading "Positions alone, bytes per vertex (raw: 12 for f32, 6 at 16 bits)"
   render "$work/positions.tsv"

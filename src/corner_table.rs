@@ -96,6 +96,7 @@ pub struct CornerTable {
     c: Vec<u32>,
     input_vertices: u32,
     copy_of: Vec<u32>,
+    /// The input index of each triangle; empty when triangle `t` is input triangle `t`.
     input_triangle: Vec<u32>,
     kept_aside: Vec<(u32, [u32; 3])>,
     conversion: Conversion,
@@ -165,7 +166,7 @@ impl CornerTable {
         let v = triangles.into_flattened();
         match glued_c_table(vertex_count, &v, &o) {
             Some(c) => Ok(CornerTable {
-                input_triangle: (0..(v.len() / 3) as u32).collect(),
+                input_triangle: Vec::new(),
                 v,
                 o,
                 c,
@@ -228,7 +229,7 @@ impl CornerTable {
 
     /// The input index of triangle `t` of the table.
     pub fn input_triangle(&self, t: Triangle) -> u32 {
-        self.input_triangle[t.idx()]
+        self.input_triangle.get(t.idx()).copied().unwrap_or(t.0)
     }
 
     /// Degenerate input triangles, kept aside: `(input index, vertex triple)`, in input order.
@@ -244,9 +245,10 @@ impl CornerTable {
     /// The input triangles, exactly as given to [`CornerTable::build`]: table triangles mapped
     /// back through [`CornerTable::original_vertex`], with the kept-aside ones in their places.
     pub fn input_triangles(&self) -> Vec<[u32; 3]> {
-        let total = self.input_triangle.len() + self.kept_aside.len();
+        let total = self.v.len() / 3 + self.kept_aside.len();
         let mut out = vec![[0u32; 3]; total];
-        for (t, &input) in self.input_triangle.iter().enumerate() {
+        for t in 0..self.v.len() / 3 {
+            let input = self.input_triangle(Triangle(t as u32));
             let corner = |i: usize| self.original_vertex(Vertex(self.v[3 * t + i])).0;
             out[input as usize] = [corner(0), corner(1), corner(2)];
         }
@@ -353,30 +355,36 @@ fn glued_c_table(nv: u32, v: &[u32], o: &[u32]) -> Option<Vec<u32>> {
             continue;
         }
         // Each corner once: swing from `c` around the fan; if it opens, unswing from `c` to
-        // its start.
+        // its start. Consecutive corners of a fan share a neighbour (`v[d.p]` is `v[d'.n]`
+        // for `d'` after `d`, the pairs being consistent): each corner stamps its `v[d.n]`,
+        // and an open fan's last corner also its `v[d.p]`.
         let (mut fan, mut neighbours) = (0usize, 0usize);
-        let mut visit = |d: u32| {
-            fan += 1;
-            for b in [v[next(d) as usize], v[prev(d) as usize]] {
-                if stamp[b as usize] != a {
-                    stamp[b as usize] = a;
-                    neighbours += 1;
-                }
+        let mut stamp_neighbour = |b: u32| {
+            if stamp[b as usize] != a {
+                stamp[b as usize] = a;
+                neighbours += 1;
             }
         };
         let mut d = c;
         let closed = loop {
-            visit(d);
-            d = swing(d);
-            if d == NONE || d == c {
-                break d == c;
+            fan += 1;
+            stamp_neighbour(v[next(d) as usize]);
+            let after = swing(d);
+            if after == NONE {
+                stamp_neighbour(v[prev(d) as usize]);
+                break false;
             }
+            if after == c {
+                break true;
+            }
+            d = after;
         };
         let mut first = c;
         if !closed {
             let mut d = unswing(c);
             while d != NONE {
-                visit(d);
+                fan += 1;
+                stamp_neighbour(v[next(d) as usize]);
                 first = d;
                 d = unswing(d);
             }

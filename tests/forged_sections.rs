@@ -115,7 +115,7 @@ fn v13_positions() {
     }
     let bad = forge(&bytes, Tag::GEOM, |p| put(p, 4, 1));
     breaks(&bad, 13, "GEOM", at + 4, "reserved");
-    for encoding in [6, u32::MAX] {
+    for encoding in [7, u32::MAX] {
         let bad = forge(&bytes, Tag::GEOM, |p| put(p, 0, encoding));
         breaks(&bad, 13, "GEOM", at, "encoding");
     }

@@ -52,6 +52,14 @@ const ORIENTED_VECTORS: [&str; 1] = ["misoriented_cube"];
 /// value encoding 1), each container with a listing of its decoded positions and values.
 const QUANTIZED_VECTORS: [&str; 3] = ["torus_with_t0", "seamed_cube", "bent_normals"];
 
+/// Sources also written at compression level 1 with quantized positions, Edgebreaker only
+/// (`NAME.q12.l1.edgebreaker.lrm`: `GEOM` encoding 6, GEOMETRY.md §9), each with a listing
+/// of its decoded positions.
+const ANCHORED_VECTORS: [&str; 2] = ["torus_with_t0", "defective_torus"];
+
+/// The level of [`ANCHORED_VECTORS`]; the others are written at the default level.
+const ANCHORED_LEVEL: u8 = 1;
+
 /// The grid of the quantized vectors' positions and texture coordinates.
 const QUANTIZED_BITS: u8 = 12;
 /// The bits of the quantized vectors' octahedral normals.
@@ -63,9 +71,15 @@ fn dir() -> PathBuf {
 
 /// The options the vectors are encoded with: input order kept, fixed metadata, the
 /// orientation repaired for [`ORIENTED_VECTORS`].
-fn options(name: &str, connectivity: Connectivity, position_bits: Option<u8>) -> EncodeOptions {
+fn options(
+    name: &str,
+    connectivity: Connectivity,
+    position_bits: Option<u8>,
+    level: u8,
+) -> EncodeOptions {
     EncodeOptions {
         connectivity,
+        level,
         keep_order: true,
         orient: if ORIENTED_VECTORS.contains(&name) {
             Orient::Repair
@@ -326,14 +340,27 @@ fn vectors_match() {
     let quantized = QUANTIZED_VECTORS
         .iter()
         .map(|&name| (name, Some(QUANTIZED_BITS)));
-    for (name, bits) in exact.chain(quantized) {
-        let grid = bits.map_or(String::new(), |b| format!(".q{b}"));
+    let default = EncodeOptions::default().level;
+    let at_default = exact
+        .chain(quantized)
+        .map(|(name, bits)| (name, bits, default));
+    let anchored = ANCHORED_VECTORS
+        .iter()
+        .map(|&name| (name, Some(QUANTIZED_BITS), ANCHORED_LEVEL));
+    for (name, bits, level) in at_default.chain(anchored) {
+        let mut grid = bits.map_or(String::new(), |b| format!(".q{b}"));
+        if level != default {
+            grid += &format!(".l{level}");
+        }
         for (connectivity, suffix) in [
             (Connectivity::Lr, ""),
             (Connectivity::Edgebreaker, ".edgebreaker"),
             (Connectivity::Strips, ".strips"),
             (Connectivity::LrCompact, ".lr-compact"),
         ] {
+            if level != default && connectivity != Connectivity::Edgebreaker {
+                continue;
+            }
             let extension = if OBJ_VECTORS.contains(&name) {
                 "obj"
             } else {
@@ -341,7 +368,7 @@ fn vectors_match() {
             };
             let source = dir().join(format!("{name}.{extension}"));
             let mesh = read_mesh(&source, &ReadOptions::default()).unwrap().mesh;
-            let bytes = encode(&mesh, &options(name, connectivity, bits)).unwrap();
+            let bytes = encode(&mesh, &options(name, connectivity, bits, level)).unwrap();
             let stem = format!("{name}{grid}{suffix}");
             let lrm = dir().join(format!("{stem}.lrm"));
             let txt = dir().join(format!("{stem}.txt"));
@@ -393,8 +420,11 @@ fn vectors_match() {
                 assert_within_half_a_step(&back.positions, &mesh.positions, bits, &stem);
                 mesh.positions = back.positions.clone();
                 // Quantized attribute values come back as `dequantized` says, and as listed.
-                mesh = lrmesh::write::dequantized(&mesh, &options(name, connectivity, Some(bits)))
-                    .unwrap();
+                mesh = lrmesh::write::dequantized(
+                    &mesh,
+                    &options(name, connectivity, Some(bits), level),
+                )
+                .unwrap();
             }
             assert_eq!(
                 values_listing(name, &stored),

@@ -24,9 +24,10 @@ pub const MAGIC: [u8; 8] = [0x89, b'L', b'R', b'M', b'\r', b'\n', 0x1a, b'\n'];
 /// Major version written and read. A reader rejects any other major version.
 pub const MAJOR: u16 = 1;
 /// Newest minor version written. Readers accept any minor version of their major version.
-pub const MINOR: u16 = 5;
+pub const MINOR: u16 = 6;
 
-/// The minor version a file of these sections (tags and payloads) is written with: 3 with
+/// The minor version a file of these sections (tags and payloads) is written with: 6 with
+/// `GEOM` encoding 6; 5 with `FLIP`; 4 with an LR flags word set; 3 with
 /// `PART` labels coded, normals predicted from their neighbours only or `COPC`; 2 with a
 /// position encoding of version 1.2 (`GEOM` encodings 2 to 5), an `ATTR` record of value
 /// encoding 1 or 2 or of seam encoding 1, `PART` runs or `KEPC`; 1 with a section of version 1.1 (`ATTR`, `PART`), 0 otherwise,
@@ -40,6 +41,7 @@ pub fn minor_for<'a>(sections: impl IntoIterator<Item = (Tag, &'a [u8])>) -> u16
     sections
         .iter()
         .map(|&(tag, bytes)| match tag {
+            Tag::GEOM if bytes.len() >= 4 && le_u32(bytes, 0) == 6 => 6,
             Tag::GEOM if bytes.len() >= 4 && le_u32(bytes, 0) >= 2 => 2,
             Tag::ATTR => vertices.map_or(1, |v| attributes::minor_version(bytes, v)),
             Tag::PART if bytes.len() >= 11 && bytes[10] == labels::CODED => 3,
@@ -372,4 +374,8 @@ impl PositionEncoding {
     /// Random-access blocks of the f32 positions as ordered integers (FORMAT.md §3.3).
     /// Lossless.
     pub const BLOCKED_F32: PositionEncoding = PositionEncoding(5);
+    /// A grid of 1 to 30 bits per coordinate, each vertex predicted in id order from the
+    /// parallelograms at its first corner and the residuals in static prefix codes
+    /// (GEOMETRY.md §9): fast to decode. Lossy.
+    pub const ANCHORED_GRID: PositionEncoding = PositionEncoding(6);
 }

@@ -193,8 +193,9 @@ fn base_sections(choice: u8) -> Vec<crate::write::SectionBytes> {
 /// The valid container [`container_forged`] starts from: bits 0–1 of `choice` the kind,
 /// 2–3 the torus's size, 4 holes and defects and every fifth triangle reversed (the
 /// orientation repaired, section `FLIP`), 5 the input order kept, 6 positions and
-/// attribute values quantized (predicted values in Edgebreaker), 7 seams and parts (with
-/// JSON labels at level 0 on the smallest torus without holes, else coded).
+/// attribute values quantized (predicted values in Edgebreaker; with bit 2 set, level 1:
+/// positions in `GEOM` encoding 6), 7 seams and parts (with JSON labels at level 0 on the
+/// smallest torus without holes, else coded).
 pub fn forged_base(choice: u8) -> Vec<u8> {
     let kind = [
         Connectivity::Lr,
@@ -229,9 +230,12 @@ pub fn forged_base(choice: u8) -> Vec<u8> {
         normal_bits: (choice & 0x40 != 0).then_some(10),
         texcoord_bits: (choice & 0x40 != 0).then_some(12),
         // Level 0 (JSON labels in `PART`, exact or 16-bit raw positions) for the smallest
-        // torus with parts and without holes; the default level (coded labels) otherwise.
+        // torus with parts and without holes; level 1 (the anchored grid) for half the
+        // quantized Edgebreaker files; the default level (coded labels) otherwise.
         level: if choice & 0x9C == 0x80 {
             0
+        } else if choice & 0x47 == 0x47 {
+            1
         } else {
             DEFAULT_LEVEL
         },

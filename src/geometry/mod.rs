@@ -3,9 +3,11 @@
 //! (on the grid, or on the f32 bits for lossless files), and the random-access blocks of the
 //! LR kinds and strips.
 
+pub(crate) mod anchored;
 pub mod blocked;
 pub(crate) mod float;
 pub(crate) mod predict;
+pub(crate) mod prefix;
 pub(crate) mod residual;
 pub(crate) mod seams;
 pub(crate) mod traversal;
@@ -63,6 +65,17 @@ impl Grid {
     /// The position that levels `q` stand for.
     pub fn dequantize(&self, q: [u32; 3]) -> [f32; 3] {
         [0, 1, 2].map(|k| self.dequantize_axis(k, q[k]))
+    }
+
+    /// The positions that `levels` stand for: [`Grid::dequantize`] of each, in a loop the
+    /// compiler can vectorize.
+    pub fn dequantize_all(&self, levels: &[[u32; 3]]) -> Vec<[f32; 3]> {
+        let max = self.max_level() as f64;
+        let (lo, size) = (self.lo.map(|l| l as f64), self.size as f64);
+        levels
+            .iter()
+            .map(|q| [0, 1, 2].map(|k| (lo[k] + (q[k] as f64 / max) * size) as f32))
+            .collect()
     }
 
     /// The grid step, `size / (2^bits - 1)`: positions come back within half of it on every

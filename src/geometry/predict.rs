@@ -514,7 +514,7 @@ pub(crate) fn decode_section<'a>(
                 max: grid.max_level(),
             };
             code(&mut dec, &plan, tables, &mut levels, false).map_err(fail)?;
-            q.iter().map(|&q| grid.dequantize(q)).collect()
+            grid.dequantize_all(&q)
         }
         None => {
             let mut p = vec![[0f32; 3]; m];

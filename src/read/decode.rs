@@ -8,6 +8,7 @@ use crate::ids::Vertex;
 use crate::mesh::seams::gather;
 use crate::mesh::{Attribute, Parts, Values};
 use crate::ops::CornerOps;
+use crate::read::Positions;
 use crate::words::{LeWords, Words};
 use crate::Mesh;
 
@@ -34,34 +35,33 @@ impl Container<'_> {
             let (copy, original) = (self.copies.at(2 * i), self.copies.at(2 * i + 1));
             output[copy as usize] = output[original as usize];
         }
-        // Every triangle as (slot, container vertices), connectivity's then kept ones.
+        // Every triangle's container vertices, connectivity's then kept ones, and the slot
+        // each comes from (`slot_ids`, left empty where slot `i` is `i`: Edgebreaker).
         let conn = &self.connectivity;
         let kept_count = self.kept.count() / 3;
-        let mut slots: Vec<(u32, [u32; 3])> =
-            Vec::with_capacity(self.triangles as usize + kept_count);
+        let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(self.triangles as usize + kept_count);
+        let mut slot_ids = Vec::new();
         match conn {
             // The decoded table's triangles, straight from its V table.
             super::Connectivity::Edgebreaker(table) => {
                 let v = table.v_table();
-                slots.extend(
-                    (0..v.len() / 3).map(|t| (t as u32, [v[3 * t], v[3 * t + 1], v[3 * t + 2]])),
-                );
+                triangles.extend(v.chunks_exact(3).map(|t| [t[0], t[1], t[2]]));
             }
             _ => {
                 for t in conn.triangles() {
-                    slots.push((t.0, conn.triangle_vertices(t).map(|v| v.0)));
+                    slot_ids.push(t.0);
+                    triangles.push(conn.triangle_vertices(t).map(|v| v.0));
                 }
             }
         }
         let bound = conn.triangle_id_bound();
         for j in 0..kept_count {
-            let tri = [0, 1, 2].map(|k| self.kept.at(3 * j + k));
-            slots.push((bound + j as u32, tri));
+            if !slot_ids.is_empty() {
+                slot_ids.push(bound + j as u32);
+            }
+            triangles.push([0, 1, 2].map(|k| self.kept.at(3 * j + k)));
         }
-        let triangles = slots
-            .iter()
-            .map(|(_, tri)| tri.map(|v| output[v as usize]))
-            .collect();
+        let slot = |i: usize| slot_ids.get(i).copied().unwrap_or(i as u32);
         let attributes = self
             .attributes
             .iter()
@@ -81,9 +81,11 @@ impl Container<'_> {
                     for i in 0..a.value_count() {
                         push(i);
                     }
-                    let index = slots
+                    let index = triangles
                         .iter()
-                        .flat_map(|&(t, tri)| {
+                        .enumerate()
+                        .flat_map(|(i, &tri)| {
+                            let t = slot(i);
                             (0..3).map(move |k| a.value_index(t, k, tri[k], self.vertices))
                         })
                         .collect();
@@ -104,11 +106,23 @@ impl Container<'_> {
             })
             .collect();
         let parts = self.parts.as_ref().map(|p| Parts {
-            of_triangle: slots.iter().map(|&(t, _)| p.part_of_slot(t)).collect(),
+            of_triangle: (0..triangles.len())
+                .map(|i| p.part_of_slot(slot(i)))
+                .collect(),
             ..p.labels.clone()
         });
+        let copies = self.copies.count() > 0;
+        if copies {
+            for tri in &mut triangles {
+                *tri = tri.map(|v| output[v as usize]);
+            }
+        }
+        let positions = match &self.positions {
+            Positions::Decoded { positions, .. } if !copies => positions.clone(),
+            _ => order.iter().map(|&v| self.position(Vertex(v))).collect(),
+        };
         let mut mesh = Mesh {
-            positions: order.iter().map(|&v| self.position(Vertex(v))).collect(),
+            positions,
             triangles,
             attributes,
             parts,

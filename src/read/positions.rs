@@ -105,7 +105,9 @@ pub(super) fn positions<'a>(
                 data: &f.bytes()[data_at..],
             })
         }
-        PositionEncoding::PREDICTED_GRID | PositionEncoding::PREDICTED_F32 => None,
+        PositionEncoding::PREDICTED_GRID
+        | PositionEncoding::PREDICTED_F32
+        | PositionEncoding::ANCHORED_GRID => None,
         PositionEncoding::BLOCKED | PositionEncoding::BLOCKED_F32 => {
             Some(Positions::Blocked(BlockedView::parse(&f, m, verify)?))
         }
@@ -157,14 +159,18 @@ pub(crate) fn bounding_box(f: &Fields, rule: Rule) -> Result<([f32; 3], [f32; 3]
     Ok((lo, hi))
 }
 
-/// Decodes a predicted encoding (2 or 3) with the Edgebreaker connectivity's corner table.
+/// Decodes a predicted encoding (2, 3 or 6) with the Edgebreaker connectivity's corner table.
 pub(super) fn decode<'a>(
     sections: &Sections<'a>,
     encoding: PositionEncoding,
     table: Option<&CornerTable>,
 ) -> Result<Positions<'a>> {
     let f = Fields::new(sections.required(Tag::GEOM)?);
-    let rule = Rule(44);
+    let rule = if encoding == PositionEncoding::ANCHORED_GRID {
+        Rule(55)
+    } else {
+        Rule(44)
+    };
     let Some(table) = table else {
         return Err(f.err(
             0,
@@ -175,5 +181,9 @@ pub(super) fn decode<'a>(
             ),
         ));
     };
-    geometry::predict::decode_section(&f, encoding, table)
+    if encoding == PositionEncoding::ANCHORED_GRID {
+        geometry::anchored::decode_section(&f, table)
+    } else {
+        geometry::predict::decode_section(&f, encoding, table)
+    }
 }

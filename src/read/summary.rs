@@ -1,7 +1,7 @@
 //! What a container holds, for reports (`lrmesh info FILE.lrm`).
 
 use super::{Connectivity, Container, Positions};
-use crate::format::{Metadata, Tag, HEADER_LEN};
+use crate::format::{Metadata, PositionEncoding, Tag, HEADER_LEN};
 use crate::lr::LrLayout;
 use crate::mesh::Semantic;
 use crate::ops::CornerOps;
@@ -80,7 +80,7 @@ pub struct ContainerSummary {
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct PositionsSummary {
     /// `f32`, `grid16` (the 1.0 encoding), `predicted-grid`, `predicted-f32`,
-    /// `blocked-grid` or `blocked-f32`.
+    /// `anchored-grid` (encoding 6), `blocked-grid` or `blocked-f32`.
     pub encoding: &'static str,
     /// Bits per coordinate of a grid; none for exact f32.
     pub bits: Option<u8>,
@@ -126,18 +126,20 @@ fn attribute_name(semantic: &Semantic) -> String {
 impl Container<'_> {
     fn positions_summary(&self) -> PositionsSummary {
         let stored = self.stored_positions();
+        let section = self.sections.section(Tag::GEOM);
+        let anchored = section.is_some_and(|s| {
+            s.bytes.get(..4) == Some(&PositionEncoding::ANCHORED_GRID.0.to_le_bytes()[..])
+        });
         let encoding = match stored {
             Positions::F32(_) => "f32",
             Positions::Quantized16 { .. } => "grid16",
+            Positions::Decoded { grid: Some(_), .. } if anchored => "anchored-grid",
             Positions::Decoded { grid: Some(_), .. } => "predicted-grid",
             Positions::Decoded { grid: None, .. } => "predicted-f32",
             Positions::Blocked(b) if b.grid().is_some() => "blocked-grid",
             Positions::Blocked(_) => "blocked-f32",
         };
-        let bytes = self
-            .sections
-            .section(Tag::GEOM)
-            .map_or(0, |s| s.bytes.len() as u64);
+        let bytes = section.map_or(0, |s| s.bytes.len() as u64);
         PositionsSummary {
             encoding,
             bits: match stored {
