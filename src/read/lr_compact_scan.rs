@@ -58,7 +58,8 @@ pub(super) fn scan_pairs(t: &Tables, m: u32, one_ring: bool) -> PairScan {
             }
         }
     }
-    let mut stored = Vec::new();
+    // A stored opposite takes a record unit at least.
+    let mut stored = Vec::with_capacity(if bad == 0 { t.records.count() } else { 0 });
     let pairs_hold =
         bad == 0 && extended_pairs_hold(t, m, one_ring.then_some(&mut flags), &mut stored);
     PairScan {

@@ -158,6 +158,7 @@ impl<W: Words, U: Units> CompactTables<W, U> {
     /// Extended pair `v` (pair word `p`) decoded in one walk over its record, reading only
     /// units it has checked exist: `None` when the record runs past the record units. For a
     /// reader's checks, which would otherwise decode the record once per question.
+    #[inline(always)]
     pub(crate) fn decode_extended(&self, v: u32, p: u32) -> Option<ExtendedPair> {
         let n = self.records.count();
         let start = self.record_start(v, p);
