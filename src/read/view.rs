@@ -125,6 +125,16 @@ impl CornerOps for Connectivity<'_> {
         let c = self.checked(c);
         each!(self, t => t.opposite(c))
     }
+    // Swings check their corner once: the defaults would check it, its `next` and the
+    // opposite again (three slot decodes of an LR layout for one answer).
+    fn swing(&self, c: Corner) -> Option<Corner> {
+        let c = self.checked(c);
+        each!(self, t => t.swing(c))
+    }
+    fn unswing(&self, c: Corner) -> Option<Corner> {
+        let c = self.checked(c);
+        each!(self, t => t.unswing(c))
+    }
     fn vertex_corner(&self, v: Vertex) -> Option<Corner> {
         assert!(v.0 < self.vertex_id_bound(), "vertex {v} out of range");
         each!(self, t => t.vertex_corner(v))
