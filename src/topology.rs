@@ -20,7 +20,6 @@
 //!   vertices.
 
 use serde::Serialize;
-use std::collections::HashSet;
 
 use crate::Mesh;
 
@@ -213,21 +212,16 @@ impl TopologyReport {
             .iter()
             .filter(|t| zero_area(t.map(|v| mesh.positions[v as usize])))
             .count() as u64;
-        let mut seen_sets = HashSet::with_capacity(tris.len());
-        let duplicate_triangles = tris
-            .iter()
-            .filter(|t| {
-                let mut s = **t;
-                s.sort_unstable();
-                !seen_sets.insert(s)
-            })
-            .count() as u64;
-        let mut seen_positions = HashSet::with_capacity(nv);
-        let duplicate_positions = mesh
-            .positions
-            .iter()
-            .filter(|p| !seen_positions.insert(p.map(|x| if x == 0.0 { 0 } else { x.to_bits() })))
-            .count() as u64;
+        let duplicate_triangles = repeats(tris.iter().map(|t| {
+            let mut s = *t;
+            s.sort_unstable();
+            s
+        }));
+        let duplicate_positions = repeats(
+            mesh.positions
+                .iter()
+                .map(|p| p.map(|x| if x == 0.0 { 0 } else { x.to_bits() })),
+        );
 
         let triangles = tris.len() as u64;
         let euler = referenced_count as i64 - edges as i64 + triangles as i64;
@@ -274,6 +268,14 @@ impl TopologyReport {
             max_valence: valence.iter().copied().max().unwrap_or(0),
         }
     }
+}
+
+/// How many of `keys` equal an earlier one. By sorting rather than hashing: the keys come
+/// from the input, and a sort's cost does not depend on what they are.
+fn repeats(keys: impl Iterator<Item = [u32; 3]>) -> u64 {
+    let mut keys: Vec<[u32; 3]> = keys.collect();
+    keys.sort_unstable();
+    keys.windows(2).filter(|w| w[0] == w[1]).count() as u64
 }
 
 fn zero_area(p: [[f32; 3]; 3]) -> bool {
