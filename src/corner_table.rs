@@ -118,7 +118,8 @@ impl CornerTable {
         }
         let nv = vertex_count as u32;
         let mut v = Vec::with_capacity(triangles.len() * 3);
-        let mut input_triangle = Vec::with_capacity(triangles.len());
+        // Filled only once a triangle is kept aside: until then triangle `t` is input `t`.
+        let mut input_triangle = Vec::new();
         let mut kept_aside = Vec::new();
         for (t, tri) in triangles.iter().enumerate() {
             if let Some(&bad) = tri.iter().find(|&&x| x >= nv) {
@@ -127,10 +128,15 @@ impl CornerTable {
                 )));
             }
             if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
+                if kept_aside.is_empty() {
+                    input_triangle = (0..t as u32).collect();
+                }
                 kept_aside.push((t as u32, *tri));
             } else {
                 v.extend_from_slice(tri);
-                input_triangle.push(t as u32);
+                if !kept_aside.is_empty() {
+                    input_triangle.push(t as u32);
+                }
             }
         }
         let (o, cut_inconsistent_edges, cut_nonmanifold_edges) = match_edges(nv, &v);

@@ -10,11 +10,13 @@ use crate::corner_table::{CornerTable, NONE};
 use crate::error::{Error, Result};
 use crate::ops::CornerOps;
 use crate::rng::Rng;
+use std::borrow::Cow;
 
-/// The corner table closed by dummy vertices and triangles over each boundary loop.
-pub(super) struct Closed {
-    pub(super) v: Vec<u32>,
-    pub(super) o: Vec<u32>,
+/// The corner table closed by dummy vertices and triangles over each boundary loop; a
+/// closed mesh's tables are borrowed, not copied (they are most of an encode's memory).
+pub(super) struct Closed<'a> {
+    pub(super) v: Cow<'a, [u32]>,
+    pub(super) o: Cow<'a, [u32]>,
     pub(super) real_triangles: u32,
     pub(super) real_vertices: u32,
     /// Real and dummy vertices.
@@ -37,33 +39,47 @@ pub(super) fn prev3(c: u32) -> u32 {
     }
 }
 
-impl Closed {
+impl<'a> Closed<'a> {
     /// Adds, for every boundary half-edge `a -> b` (facing corner `c`), a dummy triangle
     /// `(b, a, d)` where `d` is the dummy vertex of that boundary loop.
-    fn new(ct: &CornerTable) -> Result<Closed> {
-        let mut v = ct.v_table().to_vec();
-        let mut o = ct.o_table().to_vec();
-        let real_triangles = (v.len() / 3) as u32;
+    fn new(ct: &'a CornerTable) -> Result<Closed<'a>> {
+        let (v_in, o_in) = (ct.v_table(), ct.o_table());
+        let real_triangles = (v_in.len() / 3) as u32;
         let real_vertices = ct.vertex_id_bound();
+        let boundary: Vec<u32> = (0..v_in.len() as u32)
+            .filter(|&c| o_in[c as usize] == NONE)
+            .collect();
+        let total = v_in.len() + 3 * boundary.len();
+        if total >= (NONE / 2) as usize {
+            return Err(Error::Unsupported("mesh too large for LR".into()));
+        }
+        if boundary.is_empty() {
+            return Ok(Closed {
+                v: Cow::Borrowed(v_in),
+                o: Cow::Borrowed(o_in),
+                real_triangles,
+                real_vertices,
+                total_vertices: real_vertices,
+            });
+        }
+        // Allocated at their final length: growing them would hold two copies at once.
+        let widened = |table: &[u32]| {
+            let mut out = Vec::with_capacity(total);
+            out.extend_from_slice(table);
+            out.resize(total, NONE);
+            out
+        };
+        let (mut v, mut o) = (widened(v_in), widened(o_in));
         // The boundary half-edge arriving at each vertex (one at most: one fan per vertex).
         let mut incoming = vec![NONE; real_vertices as usize];
-        let boundary: Vec<u32> = (0..v.len() as u32)
-            .filter(|&c| o[c as usize] == NONE)
-            .collect();
         for &c in &boundary {
             incoming[v[prev3(c) as usize] as usize] = c;
         }
         // Dummy triangle of boundary corner c, by the order of `boundary`.
-        let mut dummy_of = vec![NONE; v.len()];
+        let mut dummy_of = vec![NONE; v_in.len()];
         for (k, &c) in boundary.iter().enumerate() {
             dummy_of[c as usize] = real_triangles + k as u32;
         }
-        let total = v.len() + 3 * boundary.len();
-        if total >= (NONE / 2) as usize {
-            return Err(Error::Unsupported("mesh too large for LR".into()));
-        }
-        v.resize(total, NONE);
-        o.resize(total, NONE);
         let mut next_dummy_vertex = real_vertices;
         for &c in &boundary {
             let t = dummy_of[c as usize];
@@ -93,8 +109,8 @@ impl Closed {
             }
         }
         Ok(Closed {
-            v,
-            o,
+            v: Cow::Owned(v),
+            o: Cow::Owned(o),
             real_triangles,
             real_vertices,
             total_vertices: next_dummy_vertex,
@@ -254,8 +270,8 @@ fn reset(comp: &Component, vm: &mut [bool], tm: &mut [bool]) {
 
 /// What every ring construction of one corner table shares: the closed mesh and its
 /// components.
-pub(super) struct Prepared {
-    pub(super) mesh: Closed,
+pub(super) struct Prepared<'a> {
+    pub(super) mesh: Closed<'a>,
     components: Vec<Component>,
 }
 
@@ -269,12 +285,12 @@ pub(super) struct Rings {
     pub(super) ring_id: Vec<u32>,
 }
 
-impl Prepared {
+impl<'a> Prepared<'a> {
     /// Closes `ct` and finds its components.
     ///
     /// # Errors
     /// [`Error::Unsupported`] when the mesh exceeds the LR's vertex ids.
-    pub(super) fn new(ct: &CornerTable) -> Result<Prepared> {
+    pub(super) fn new(ct: &'a CornerTable) -> Result<Prepared<'a>> {
         let mesh = Closed::new(ct)?;
         if mesh.real_vertices >= NULL {
             return Err(Error::Unsupported(
@@ -330,7 +346,7 @@ const T0_BYTES: u64 = 26;
 
 /// The state of the ring expansions of one period, component after component.
 struct Expansion<'m> {
-    mesh: &'m Closed,
+    mesh: &'m Closed<'m>,
     period: u32,
     rng: Rng,
     deque: std::collections::VecDeque<u32>,
@@ -340,7 +356,7 @@ struct Expansion<'m> {
 }
 
 impl<'m> Expansion<'m> {
-    fn new(mesh: &'m Closed, period: u32, seed: u64) -> Expansion<'m> {
+    fn new(mesh: &'m Closed<'m>, period: u32, seed: u64) -> Expansion<'m> {
         let mut vm = vec![false; mesh.total_vertices as usize];
         vm[mesh.real_vertices as usize..].fill(true);
         Expansion {

@@ -70,6 +70,8 @@ fn write_arrays(out: &mut Vec<u8>, layout: &Layout, words: &[&[u32]], units: &[&
             array.name
         );
     }
+    // At its final size at once: growing by doubling would hold up to twice the section.
+    out.reserve_exact((layout.len as usize).saturating_sub(out.len()));
     for w in words {
         write_fields(out, w);
     }
