@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds lrmesh for web pages (web/API.md) from web/crate: web/pkg/ (decoder and encoder, what
-# the viewer loads) and web/pkg-decoder/ (the decoder alone), and prints the gzipped size of
-# each .wasm. Needs the wasm32-unknown-unknown target (`rustup target add
+# the viewer loads) and web/pkg-decoder/ (the decoder alone, optimised for size), and prints
+# the gzipped size of each .wasm. Needs the wasm32-unknown-unknown target (`rustup target add
 # wasm32-unknown-unknown`) and wasm-bindgen-cli at the exact version of the wasm-bindgen crate
 # in web/crate/Cargo.lock, which it installs (`cargo install`) when missing.
 set -euo pipefail
@@ -24,4 +24,5 @@ build() { # OUT_DIR [cargo options]
     "$(gzip -9c "$out/lrmesh_wasm_bg.wasm" | wc -c) gzipped"
 }
 build pkg
-build pkg-decoder --no-default-features
+# The decoder alone is optimised for size (the viewer loads pkg/, optimised for speed).
+CARGO_PROFILE_RELEASE_OPT_LEVEL=z build pkg-decoder --no-default-features
