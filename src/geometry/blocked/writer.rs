@@ -66,29 +66,58 @@ pub(super) fn encode_with(values: &[[i64; 3]], grid: Option<Grid>, levels: u32) 
             dir.put(*w as u64, shape.width_bits);
         }
     }
-    let mut data = BitWriter::new(dir.finish());
-    let per_block = (1usize << levels) - 1;
-    for (residuals, widths) in blocks.residuals.chunks(per_block).zip(&blocks.widths) {
-        let mut at = 0;
-        for (l, w) in widths.iter().take(levels as usize).enumerate() {
-            for triple in &residuals[at..at + (1 << l)] {
-                for k in 0..3 {
-                    data.put(triple[k], w[k]);
-                }
+    // The data at its final size: growing by doubling would hold up to twice the section.
+    let mut bytes = dir.finish();
+    bytes.reserve_exact(total.div_ceil(8) as usize);
+    let mut data = BitWriter::new(bytes);
+    for (j, widths) in blocks.widths.iter().enumerate() {
+        block_residuals(values, levels, j, |l, z| {
+            for k in 0..3 {
+                data.put(z[k], widths[l][k]);
             }
-            at += 1 << l;
-        }
+        });
     }
     data.finish()
 }
 
-/// The blocks of a section, computed before anything is written (the start field's width
-/// depends on the total).
+/// The zigzag residuals of block `j` of blocks of `2^levels` vertices, level by level, in data
+/// order: `each(level, residuals)`. Each vertex is guessed as the mean of the two known
+/// vertices around it; past the last vertex the guess stands (residual 0). Run once to size
+/// the block and once to write it, so that no residual is stored.
+fn block_residuals(
+    values: &[[i64; 3]],
+    levels: u32,
+    j: usize,
+    mut each: impl FnMut(usize, [u64; 3]),
+) {
+    let block = 1usize << levels;
+    let mut known = [[0i64; 3]; (1 << MAX_LEVELS) + 1];
+    known[0] = anchor(values, levels, j);
+    known[block] = anchor(values, levels, j + 1);
+    for l in 0..levels as usize {
+        let h = block >> (l + 1);
+        for idx in 0..1 << l {
+            let p = (2 * idx + 1) * h;
+            let guess = [0, 1, 2].map(|k| (known[p - h][k] + known[p + h][k]) >> 1);
+            let actual = values.get(j * block + p).copied().unwrap_or(guess);
+            each(l, [0, 1, 2].map(|k| zigzag(actual[k] - guess[k])));
+            known[p] = actual;
+        }
+    }
+}
+
+/// The anchor of record `j`: the first vertex of block `j`, and for the end record the last
+/// vertex (the interval of the last block ends near it).
+fn anchor(values: &[[i64; 3]], levels: u32, j: usize) -> [i64; 3] {
+    let at = (j << levels).min(values.len().saturating_sub(1));
+    values.get(at).copied().unwrap_or_default()
+}
+
+/// The widths and data starts of a section's blocks, computed before anything is written
+/// (the start field's width depends on the total).
 struct Blocks<'a> {
     values: &'a [[i64; 3]],
     levels: u32,
-    /// Zigzag residuals, per block `2^L - 1` triples in data order (level by level).
-    residuals: Vec<[u64; 3]>,
     /// Widths per block, level and axis.
     widths: Vec<[[u32; 3]; MAX_LEVELS as usize]>,
     /// The data start of every record, the end record's being the total.
@@ -97,36 +126,23 @@ struct Blocks<'a> {
 
 impl<'a> Blocks<'a> {
     fn of(values: &'a [[i64; 3]], levels: u32) -> Blocks<'a> {
-        let block = 1usize << levels;
-        let count = values.len().div_ceil(block);
+        let count = values.len().div_ceil(1 << levels);
         let mut blocks = Blocks {
             values,
             levels,
-            residuals: Vec::with_capacity(count * (block - 1)),
             widths: Vec::with_capacity(count),
             starts: Vec::with_capacity(count + 1),
         };
         let mut total = 0;
-        let mut known = [[0i64; 3]; (1 << MAX_LEVELS) + 1];
         for j in 0..count {
             blocks.starts.push(total);
-            known[0] = blocks.anchor(j);
-            known[block] = blocks.anchor(j + 1);
             let mut widths = [[0u32; 3]; MAX_LEVELS as usize];
-            for (l, w) in widths.iter_mut().enumerate().take(levels as usize) {
-                let h = block >> (l + 1);
-                for idx in 0..1 << l {
-                    let p = (2 * idx + 1) * h;
-                    let guess = [0, 1, 2].map(|k| (known[p - h][k] + known[p + h][k]) >> 1);
-                    // Past the last vertex the guess stands: residual 0.
-                    let actual = values.get(j * block + p).copied().unwrap_or(guess);
-                    let z = [0, 1, 2].map(|k| zigzag(actual[k] - guess[k]));
-                    for k in 0..3 {
-                        w[k] = w[k].max(u64::BITS - z[k].leading_zeros());
-                    }
-                    blocks.residuals.push(z);
-                    known[p] = actual;
+            block_residuals(values, levels, j, |l, z| {
+                for k in 0..3 {
+                    widths[l][k] = widths[l][k].max(u64::BITS - z[k].leading_zeros());
                 }
+            });
+            for (l, w) in widths.iter().enumerate().take(levels as usize) {
                 total += ((w[0] + w[1] + w[2]) as u64) << l;
             }
             blocks.widths.push(widths);
@@ -137,11 +153,9 @@ impl<'a> Blocks<'a> {
         blocks
     }
 
-    /// The anchor of record `j`: the first vertex of block `j`, and for the end record the
-    /// last vertex (the interval of the last block ends near it).
+    /// The anchor of record `j` ([`anchor`]).
     fn anchor(&self, j: usize) -> [i64; 3] {
-        let at = (j << self.levels).min(self.values.len().saturating_sub(1));
-        self.values.get(at).copied().unwrap_or_default()
+        anchor(self.values, self.levels, j)
     }
 }
 
