@@ -246,6 +246,37 @@ pub trait LrInspect: LrLayout {
     fn ring_range(&self, ring: usize) -> Option<std::ops::Range<u32>> {
         (ring < self.ring_count()).then(|| self.ring_start(ring)..self.ring_start(ring + 1))
     }
+
+    /// Each ring vertex's place along its ring, 0 (its first) to 1 (its last): what pictures
+    /// colour by ring order.
+    fn ring_places(&self) -> Vec<f32> {
+        let mut place = vec![0.0; self.ring_vertices() as usize];
+        for range in (0..self.ring_count()).filter_map(|r| self.ring_range(r)) {
+            let span = (range.len().max(2) - 1) as f32;
+            for v in range.clone() {
+                place[v as usize] = (v - range.start) as f32 / span;
+            }
+        }
+        place
+    }
+
+    /// The place along its ring of triangle `t` (`places` from [`LrInspect::ring_places`]): a
+    /// ring-edge triangle takes its ring edge's, a T0 the mean of its ring vertices'; `None`
+    /// when none of its vertices is on a ring.
+    fn triangle_ring_place(&self, places: &[f32], t: Triangle) -> Option<f32>
+    where
+        Self: Sized,
+    {
+        if t.0 < 2 * self.ring_vertices() {
+            return places.get((t.0 / 2) as usize).copied();
+        }
+        let on_ring: Vec<f32> = self
+            .triangle_vertices(t)
+            .iter()
+            .filter_map(|v| places.get(v.idx()).copied())
+            .collect();
+        (!on_ring.is_empty()).then(|| on_ring.iter().sum::<f32>() / on_ring.len() as f32)
+    }
 }
 
 impl<T: LrLayout> LrInspect for T {}

@@ -1,49 +1,10 @@
-//! The colours of [`ColorMode`](super::ColorMode): ring order from blue to red, and the
-//! triangle-class palette of the LR paper's Fig. 1.
+//! The colours of [`ColorMode`](super::ColorMode): ring order from blue to red (grey off
+//! the rings), and the triangle-class palette of the LR paper's Fig. 1.
 
-use crate::ids::{Triangle, Vertex};
-use crate::lr::{LrInspect, LrLayout, TriangleClass};
+use crate::lr::TriangleClass;
 
-/// Ring position of each ring vertex in `0..=1` (start to end of its ring).
-pub(super) fn ring_parameters<L: LrLayout>(lr: &L) -> Vec<f32> {
-    let mut param = vec![0.0; lr.ring_vertices() as usize];
-    for r in 0..lr.ring_count() {
-        let Some(range) = lr.ring_range(r) else {
-            continue;
-        };
-        let span = (range.len().max(2) - 1) as f32;
-        for v in range.clone() {
-            if let Some(p) = param.get_mut(v as usize) {
-                *p = (v - range.start) as f32 / span;
-            }
-        }
-    }
-    param
-}
-
-/// Ring-order colour of triangle `t`: a ring-edge triangle takes its ring edge's place, a T0
-/// the mean place of its ring vertices; grey when none of its vertices is on a ring.
-pub(super) fn ring_color<L: LrLayout>(
-    lr: &L,
-    ring: &[f32],
-    t: Triangle,
-    vs: [Vertex; 3],
-) -> Option<[f32; 3]> {
-    let slot = t.0 / 2;
-    if t.0 < 2 * lr.ring_vertices() {
-        return ring.get(slot as usize).map(|&x| blue_to_red(x));
-    }
-    let on_ring: Vec<f32> = vs
-        .iter()
-        .filter_map(|v| ring.get(v.idx()).copied())
-        .collect();
-    if on_ring.is_empty() {
-        return Some([0.6, 0.6, 0.6]);
-    }
-    Some(blue_to_red(
-        on_ring.iter().sum::<f32>() / on_ring.len() as f32,
-    ))
-}
+/// The colour of a triangle with no vertex on a ring.
+pub(super) const OFF_RING: [f32; 3] = [0.6, 0.6, 0.6];
 
 /// Hue from blue (`x = 0`) through cyan, green and yellow to red (`x = 1`).
 pub(super) fn blue_to_red(x: f32) -> [f32; 3] {

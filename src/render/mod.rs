@@ -44,7 +44,7 @@ mod raster;
 use std::io::Write;
 
 use self::camera::{add3, cross, dot, norm, normalize, scale3, sub3};
-use self::colors::{class_color, ring_color, ring_parameters};
+use self::colors::{blue_to_red, class_color, OFF_RING};
 use self::raster::{depth_bias, Target};
 use crate::error::{Error, Result};
 use crate::lr::{LrInspect, LrLayout};
@@ -217,12 +217,15 @@ pub fn render<L: LrLayout>(
         add3(camera.back, scale3(camera.up, 0.6)),
         scale3(camera.right, -0.35),
     ));
-    let ring = ring_parameters(lr);
+    let ring = lr.ring_places();
     for t in lr.triangles() {
         let vs = lr.triangle_vertices(t);
         let p = vs.map(|v| positions[v.idx()]);
         let Some(base) = (match options.mode {
-            ColorMode::Ring => ring_color(lr, &ring, t, vs),
+            ColorMode::Ring => Some(
+                lr.triangle_ring_place(&ring, t)
+                    .map_or(OFF_RING, blue_to_red),
+            ),
             ColorMode::Classes => lr.triangle_class(t).map(class_color),
         }) else {
             continue;

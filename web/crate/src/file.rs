@@ -2,7 +2,7 @@
 //! Ids from the page are checked before use: a bad id is an `Error` in the page, never a
 //! trap of the WebAssembly module.
 
-use lrmesh::lr::{LrInspect, LrLayout, TriangleClass};
+use lrmesh::lr::{LrInspect, TriangleClass};
 use lrmesh::read::{open, open_verified, Connectivity, Container, Limits};
 use lrmesh::{Corner, CornerOps, Triangle, Vertex};
 use wasm_bindgen::prelude::*;
@@ -95,33 +95,13 @@ impl LrmFile {
     }
 
     /// Place along its ring of each triangle, for an LR layout (`lrmesh render`'s colours).
-    fn ring_places<L: LrLayout>(&self, lr: &L) -> Vec<f32> {
-        let m_r = lr.ring_vertices();
-        let mut place = vec![f32::NAN; m_r as usize];
-        for r in 0..lr.ring_count() {
-            let (start, end) = (lr.ring_start(r), lr.ring_start(r + 1));
-            let span = (end - start).max(2) as f32 - 1.0;
-            for v in start..end {
-                place[v as usize] = (v - start) as f32 / span;
-            }
-        }
+    fn ring_places<L: LrInspect>(&self, lr: &L) -> Vec<f32> {
+        let places = lr.ring_places();
         self.ids
             .iter()
             .map(|&t| {
-                if t < 2 * m_r {
-                    return place[(t / 2) as usize];
-                }
-                let on_ring: Vec<f32> = self
-                    .conn()
-                    .triangle_vertices(Triangle(t))
-                    .iter()
-                    .filter_map(|v| place.get(v.0 as usize).copied())
-                    .collect();
-                if on_ring.is_empty() {
-                    f32::NAN
-                } else {
-                    on_ring.iter().sum::<f32>() / on_ring.len() as f32
-                }
+                lr.triangle_ring_place(&places, Triangle(t))
+                    .unwrap_or(f32::NAN)
             })
             .collect()
     }
@@ -299,10 +279,7 @@ impl LrmFile {
     pub fn reencode(&self, connectivity: &str) -> Result<Vec<u8>, JsError> {
         let options = lrmesh::write::EncodeOptions {
             connectivity: crate::connectivity(connectivity)?,
-            metadata: lrmesh::format::Metadata {
-                generator: format!("lrmesh {} (web)", env!("CARGO_PKG_VERSION")),
-                ..Default::default()
-            },
+            metadata: crate::metadata(),
             ..Default::default()
         };
         lrmesh::write::encode(&self.container.to_mesh(), &options).map_err(js_error)

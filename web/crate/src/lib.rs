@@ -87,6 +87,15 @@ pub(crate) fn connectivity(name: &str) -> Result<lrmesh::write::Connectivity, Js
     })
 }
 
+/// The `META` of what the page writes: this binding as the generator.
+#[cfg(feature = "encoder")]
+pub(crate) fn metadata() -> lrmesh::format::Metadata {
+    lrmesh::format::Metadata {
+        generator: format!("lrmesh {} (web)", env!("CARGO_PKG_VERSION")),
+        ..Default::default()
+    }
+}
+
 /// The writer's options from the page's JSON (`web/API.md`), the library's defaults for
 /// what it leaves out.
 #[cfg(feature = "encoder")]
@@ -97,10 +106,7 @@ fn encode_options(json: &str) -> Result<lrmesh::write::EncodeOptions, JsError> {
         serde_json::from_str(json).map_err(|e| JsError::new(&format!("options: {e}")))?
     };
     let mut options = lrmesh::write::EncodeOptions {
-        metadata: lrmesh::format::Metadata {
-            generator: format!("lrmesh {} (web)", env!("CARGO_PKG_VERSION")),
-            ..Default::default()
-        },
+        metadata: metadata(),
         ..Default::default()
     };
     let number = |key: &str, max: u64| -> Result<Option<u8>, JsError> {
