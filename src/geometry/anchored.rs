@@ -34,8 +34,8 @@ fn symbol(m: u32) -> usize {
     }
 }
 
-/// What follows symbol `s`: its class `c` and the number of extra bits (the sign when `c ≥ 1`,
-/// then the `c − 2` bits below the two leading ones).
+/// The class (bit length of the magnitude) of symbol `s`; after the symbol come the sign
+/// when the class is 1 or more, then the `class − 2` bits below the two leading ones.
 #[inline(always)]
 fn class_of(s: u32) -> u32 {
     if s < 2 {

@@ -70,11 +70,10 @@ impl Grid {
     /// The positions that `levels` stand for: [`Grid::dequantize`] of each, in a loop the
     /// compiler can vectorize.
     pub fn dequantize_all(&self, levels: &[[u32; 3]]) -> Vec<[f32; 3]> {
-        let max = self.max_level() as f64;
-        let (lo, size) = (self.lo.map(|l| l as f64), self.size as f64);
+        let max = self.max_level();
         levels
             .iter()
-            .map(|q| [0, 1, 2].map(|k| (lo[k] + (q[k] as f64 / max) * size) as f32))
+            .map(|q| [0, 1, 2].map(|k| from_level(q[k], self.lo[k], self.size, max)))
             .collect()
     }
 

@@ -166,11 +166,8 @@ pub(super) fn decode<'a>(
     table: Option<&CornerTable>,
 ) -> Result<Positions<'a>> {
     let f = Fields::new(sections.required(Tag::GEOM)?);
-    let rule = if encoding == PositionEncoding::ANCHORED_GRID {
-        Rule(55)
-    } else {
-        Rule(44)
-    };
+    let anchored = encoding == PositionEncoding::ANCHORED_GRID;
+    let rule = Rule(if anchored { 55 } else { 44 });
     let Some(table) = table else {
         return Err(f.err(
             0,
@@ -181,7 +178,7 @@ pub(super) fn decode<'a>(
             ),
         ));
     };
-    if encoding == PositionEncoding::ANCHORED_GRID {
+    if anchored {
         geometry::anchored::decode_section(&f, table)
     } else {
         geometry::predict::decode_section(&f, encoding, table)

@@ -57,7 +57,7 @@ pub(super) fn encode_with(values: &[[i64; 3]], grid: Option<Grid>, levels: u32) 
     let mut dir = BitWriter::new(out);
     for (j, &start) in blocks.starts.iter().enumerate() {
         dir.put(start, start_bits);
-        for x in blocks.anchor(j) {
+        for x in anchor(values, levels, j) {
             dir.put(x as u64, shape.anchor_bits);
         }
         // The end record (no block of its own) has widths 0.
@@ -115,21 +115,17 @@ fn anchor(values: &[[i64; 3]], levels: u32, j: usize) -> [i64; 3] {
 
 /// The widths and data starts of a section's blocks, computed before anything is written
 /// (the start field's width depends on the total).
-struct Blocks<'a> {
-    values: &'a [[i64; 3]],
-    levels: u32,
+struct Blocks {
     /// Widths per block, level and axis.
     widths: Vec<[[u32; 3]; MAX_LEVELS as usize]>,
     /// The data start of every record, the end record's being the total.
     starts: Vec<u64>,
 }
 
-impl<'a> Blocks<'a> {
-    fn of(values: &'a [[i64; 3]], levels: u32) -> Blocks<'a> {
+impl Blocks {
+    fn of(values: &[[i64; 3]], levels: u32) -> Blocks {
         let count = values.len().div_ceil(1 << levels);
         let mut blocks = Blocks {
-            values,
-            levels,
             widths: Vec::with_capacity(count),
             starts: Vec::with_capacity(count + 1),
         };
@@ -151,11 +147,6 @@ impl<'a> Blocks<'a> {
             blocks.starts.push(total);
         }
         blocks
-    }
-
-    /// The anchor of record `j` ([`anchor`]).
-    fn anchor(&self, j: usize) -> [i64; 3] {
-        anchor(self.values, self.levels, j)
     }
 }
 
