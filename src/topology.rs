@@ -95,13 +95,6 @@ impl UnionFind {
     }
 }
 
-/// One use of an edge by a triangle: the edge from corner `i` to corner `i+1` of triangle `t`.
-#[derive(Clone, Copy)]
-struct EdgeUse {
-    key: u64,
-    corner: u32,
-}
-
 impl TopologyReport {
     /// Computes the report. The mesh must be valid ([`Mesh::validate`]); indices out of range
     /// panic.
@@ -117,21 +110,32 @@ impl TopologyReport {
         }
         let referenced_count = referenced.iter().filter(|&&r| r).count() as u64;
 
-        // Every use of an edge, sorted so that the uses of one edge are adjacent.
-        let mut uses: Vec<EdgeUse> = Vec::with_capacity(tris.len() * 3);
-        for (t, tri) in tris.iter().enumerate() {
-            for i in 0..3 {
-                let (a, b) = (tri[i], tri[(i + 1) % 3]);
-                if a != b {
-                    let key = ((a.min(b) as u64) << 32) | a.max(b) as u64;
-                    uses.push(EdgeUse {
-                        key,
-                        corner: (3 * t + i) as u32,
-                    });
-                }
-            }
+        // Every use of an edge as (higher vertex, corner), bucketed by its lower vertex with a
+        // counting sort and sorted by the higher one within each bucket, so that the uses of
+        // one edge are adjacent: 8 bytes per use where sorting (key, corner) records takes 16.
+        // `start` counts each bucket, then (inclusive prefix sums, filled downwards) begins it.
+        let edge_uses = || {
+            tris.iter().enumerate().flat_map(|(t, tri)| {
+                (0..3).filter_map(move |i| {
+                    let (a, b) = (tri[i], tri[(i + 1) % 3]);
+                    (a != b).then_some((a.min(b), a.max(b), (3 * t + i) as u32))
+                })
+            })
+        };
+        let mut start = vec![0u32; nv + 1];
+        for (lo, _, _) in edge_uses() {
+            start[lo as usize] += 1;
         }
-        uses.sort_unstable_by_key(|u| u.key);
+        let mut total = 0;
+        for x in start.iter_mut() {
+            total += *x;
+            *x = total;
+        }
+        let mut uses = vec![(0u32, 0u32); total as usize];
+        for (lo, hi, corner) in edge_uses() {
+            start[lo as usize] -= 1;
+            uses[start[lo as usize] as usize] = (hi, corner);
+        }
 
         // Corner `3t+i` stands for vertex tri[i] in triangle t; fans join corners of one
         // vertex whose triangles share an edge at that vertex.
@@ -142,40 +146,44 @@ impl TopologyReport {
         let mut valence = vec![0u64; nv];
         let (mut edges, mut boundary_edges, mut nonmanifold_edges, mut inconsistent_edges) =
             (0u64, 0u64, 0u64, 0u64);
-        for group in uses.chunk_by(|a, b| a.key == b.key) {
-            edges += 1;
-            let (lo, hi) = ((group[0].key >> 32) as u32, group[0].key as u32);
-            valence[lo as usize] += 1;
-            valence[hi as usize] += 1;
-            match group.len() {
-                1 => {
-                    boundary_edges += 1;
-                    boundary_graph.union(lo, hi);
-                    in_boundary[lo as usize] = true;
-                    in_boundary[hi as usize] = true;
-                }
-                2 => {
-                    if corner_vertex(group[0].corner) == corner_vertex(group[1].corner) {
-                        inconsistent_edges += 1;
+        for lo in 0..nv {
+            let bucket = &mut uses[start[lo] as usize..start[lo + 1] as usize];
+            bucket.sort_unstable();
+            for group in bucket.chunk_by(|a, b| a.0 == b.0) {
+                let (lo, hi) = (lo as u32, group[0].0);
+                edges += 1;
+                valence[lo as usize] += 1;
+                valence[hi as usize] += 1;
+                match group.len() {
+                    1 => {
+                        boundary_edges += 1;
+                        boundary_graph.union(lo, hi);
+                        in_boundary[lo as usize] = true;
+                        in_boundary[hi as usize] = true;
                     }
+                    2 => {
+                        if corner_vertex(group[0].1) == corner_vertex(group[1].1) {
+                            inconsistent_edges += 1;
+                        }
+                    }
+                    _ => nonmanifold_edges += 1,
                 }
-                _ => nonmanifold_edges += 1,
-            }
-            // The corners at `lo` (and at `hi`) of all triangles on this edge join one fan.
-            let at = |u: EdgeUse, x: u32| {
-                let c = u.corner;
-                let following = 3 * (c / 3) + (c % 3 + 1) % 3;
-                if corner_vertex(c) == x {
-                    c
-                } else {
-                    following
+                // The corners at `lo` (and at `hi`) of all triangles on this edge join one fan.
+                let at = |c: u32, x: u32| {
+                    let following = 3 * (c / 3) + (c % 3 + 1) % 3;
+                    if corner_vertex(c) == x {
+                        c
+                    } else {
+                        following
+                    }
+                };
+                for &(_, c) in &group[1..] {
+                    fans.union(at(group[0].1, lo), at(c, lo));
+                    fans.union(at(group[0].1, hi), at(c, hi));
                 }
-            };
-            for u in &group[1..] {
-                fans.union(at(group[0], lo), at(*u, lo));
-                fans.union(at(group[0], hi), at(*u, hi));
             }
         }
+        drop((uses, start));
 
         // Fans per vertex: count distinct fan roots among each vertex's corners.
         let mut first_root = vec![u32::MAX; nv];
@@ -189,6 +197,7 @@ impl TopologyReport {
                 nonmanifold[v] = true;
             }
         }
+        drop((fans, first_root));
         let nonmanifold_vertices = nonmanifold.iter().filter(|&&x| x).count() as u64;
 
         let boundary_loops = (0..nv as u32)

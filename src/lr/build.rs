@@ -35,12 +35,14 @@ impl Lr {
     pub fn build_with_period(ct: &CornerTable, options: &LrOptions, period: u32) -> Result<Lr> {
         let prepared = Prepared::new(ct)?;
         let rings = prepared.rings(period, options.tries, options.seed);
-        Lr::from_rings(ct, &prepared, rings)
+        Lr::from_rings(ct, prepared, rings)
     }
 
-    /// The LR of `ct` with the rings `rings` of its closed mesh `prepared`.
-    pub(super) fn from_rings(ct: &CornerTable, prepared: &Prepared, rings: Rings) -> Result<Lr> {
-        let mesh = &prepared.mesh;
+    /// The LR of `ct` with the rings `rings` of its closed mesh `prepared`. Each working
+    /// array is freed once the steps after it no longer read it, and the components first:
+    /// the encoder's peak memory is here.
+    pub(super) fn from_rings(ct: &CornerTable, prepared: Prepared, rings: Rings) -> Result<Lr> {
+        let mesh = &prepared.into_closed();
         let real_vertices = mesh.real_vertices;
         let Rings {
             ring_corner,
@@ -125,6 +127,7 @@ impl Lr {
                 t0_count += 1;
             }
         }
+        drop(slots_of);
         let mut t0_wart = 0u32;
         let t0_before_warts: Vec<usize> = (0..nt_real).filter(|&t| is_t0[t]).collect();
         for t in t0_before_warts {
@@ -149,6 +152,7 @@ impl Lr {
             }
         }
 
+        drop(t2_redundant);
         // A slot whose tip merely looks like a redundant T2's (pseudo-manifold input can have
         // two triangles on the same three vertices) is made irregular, which makes it
         // canonical; its record's opposites are filled in below.
@@ -174,28 +178,35 @@ impl Lr {
             }
         }
 
+        drop(t2_redundant_slot);
         // Corner ids: canonical slots, then T0 triangles into VO.
         let t0_list: Vec<u32> = (0..nt_real as u32).filter(|&t| is_t0[t as usize]).collect();
-        let mut ct_to_lr = vec![NONE; 3 * nt_real];
+        drop(is_t0);
+        // Per table triangle, its LR corners: `4·id + s`, corner `c` of the table becoming LR
+        // corner `4·id + (c mod 3 + s) mod 3`; 4 bytes per triangle where a map per corner
+        // takes 12. A slot triangle's corners at v, the tip and the far vertex are its LR
+        // corners 0, 1, 2 on the left (`8v + 0..=2`) and 2, 1, 0 on the right (`8v + 6..=4`,
+        // see [`slot_corners`]): either way the tip (position `r` in its triangle) is corner
+        // 1, so `s = (1 - r) mod 3`. A T0 keeps its corner order (`s = 0`).
+        let mut triangle_lr = vec![NONE; nt_real];
         let base = 8 * m_r;
         for (j, &t) in t0_list.iter().enumerate() {
-            for i in 0..3 {
-                ct_to_lr[3 * t as usize + i] = base + 4 * j as u32 + i as u32;
-            }
+            triangle_lr[t as usize] = base + 4 * j as u32;
         }
         for (slot, &tip) in slot_tip_corner.iter().enumerate() {
             let (v, side) = ((slot / 2) as u32, slot % 2);
             if tip == NONE || lr_struct.tables.redundant(v, side) {
                 continue;
             }
-            let offsets = if side == LEFT { [0, 1, 2] } else { [6, 5, 4] };
-            for (k, ct_corner) in slot_corners(tip, side).into_iter().enumerate() {
-                ct_to_lr[ct_corner as usize] = 8 * v + offsets[k];
-            }
+            triangle_lr[tip as usize / 3] = 8 * v + 4 * side as u32 + (4 - tip % 3) % 3;
         }
+        let ct_to_lr = |c: u32| match triangle_lr[c as usize / 3] {
+            NONE => NONE,
+            w => (w & !3) + (c % 3 + (w & 3)) % 3,
+        };
         let truth_o = |ct_corner: u32| match ct.o_table()[ct_corner as usize] {
             NONE => NONE,
-            d => ct_to_lr[d as usize],
+            d => ct_to_lr(d),
         };
         for &t in &t0_list {
             for i in 0..3 {
@@ -241,6 +252,7 @@ impl Lr {
             }
         }
 
+        drop(slot_tip_corner);
         // C table and the maps back to the input.
         let m = real_vertices;
         lr_struct.tables.c = vec![NONE; (m - m_r) as usize];
@@ -250,11 +262,8 @@ impl Lr {
             lr_struct.vertex_input[id as usize] = ct.original_vertex(Vertex(x)).0;
             if id >= m_r {
                 let c = ct.c_table()[x as usize];
-                lr_struct.tables.c[(id - m_r) as usize] = if c == NONE {
-                    NONE
-                } else {
-                    ct_to_lr[c as usize]
-                };
+                lr_struct.tables.c[(id - m_r) as usize] =
+                    if c == NONE { NONE } else { ct_to_lr(c) };
             }
         }
         lr_struct.input_vertex_lr = vec![NONE; ct.input_vertex_count() as usize];
@@ -263,8 +272,8 @@ impl Lr {
         }
         lr_struct.triangle_input = vec![NONE; 2 * m_r as usize + t0_list.len()];
         lr_struct.input_triangle_lr = vec![NONE; nt_real + ct.kept_aside().len()];
-        for t in 0..nt_real {
-            let id = ct_to_lr[3 * t] / 4;
+        for (t, &w) in triangle_lr.iter().enumerate() {
+            let id = w / 4;
             let input = ct.input_triangle(Triangle(t as u32));
             lr_struct.triangle_input[id as usize] = input;
             lr_struct.input_triangle_lr[input as usize] = id;

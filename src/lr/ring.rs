@@ -301,6 +301,11 @@ impl<'a> Prepared<'a> {
         Ok(Prepared { mesh, components })
     }
 
+    /// The closed mesh, the components freed.
+    pub(super) fn into_closed(self) -> Closed<'a> {
+        self.mesh
+    }
+
     /// The rings by RING-EXPANDER (`period` 0) or HYBRID-RING-EXPANDER of `period`: per
     /// component the best of `tries` seed corners drawn from `seed`
     /// ([`Expansion::best_of`]), walked to number its vertices.

@@ -43,16 +43,30 @@ pub(super) struct Shape {
 }
 
 impl Shape {
-    fn of(ops: &impl CornerOps) -> Shape {
+    /// The triangles of `ops` with their corners when `wanted` (attributes and parts are
+    /// indexed by them), only the id bound otherwise: 16 bytes per triangle not held.
+    fn of(ops: &impl CornerOps, wanted: bool) -> Shape {
+        let n = if wanted { ops.triangles().count() } else { 0 };
+        let mut ids = Vec::with_capacity(n);
+        let mut corners = Vec::with_capacity(n);
+        for t in ops.triangles().take(n) {
+            ids.push(t.0);
+            corners.push(ops.triangle_vertices(t).map(|v| v.0));
+        }
         Shape {
             id_bound: ops.triangle_id_bound(),
-            ids: ops.triangles().map(|t| t.0).collect(),
-            corners: ops
-                .triangles()
-                .map(|t| ops.triangle_vertices(t).map(|v| v.0))
-                .collect(),
+            ids,
+            corners,
         }
     }
+}
+
+/// The input triangle of each of `ops`'s triangles, in its order, allocated at its final size
+/// (counted first: collecting a filtered iterator would double its capacity as it grows).
+fn input_triangles(ops: &impl CornerOps, input: impl Fn(Triangle) -> u32) -> Vec<u32> {
+    let mut out = Vec::with_capacity(ops.triangles().count());
+    out.extend(ops.triangles().map(input));
+    out
 }
 
 /// Appends each array in layout order, checking that its length is the one the header's
@@ -93,7 +107,8 @@ fn boundary_flag<T: LrLayout>(tables: &T) -> u32 {
 }
 
 /// The `LRTB` section of a built LR.
-pub(super) fn lr_section(lr: &Lr) -> Encoded {
+/// With `shape`, the triangles as a reader numbers them (see [`Shape::of`]).
+pub(super) fn lr_section(lr: &Lr, shape: bool) -> Encoded {
     let t = lr.tables();
     let header = LrtbHeader {
         m: t.m,
@@ -128,14 +143,15 @@ pub(super) fn lr_section(lr: &Lr) -> Encoded {
         input_vertex: (0..lr.vertex_id_bound())
             .map(|v| lr.input_vertex(Vertex(v)))
             .collect(),
-        input_triangle: lr.triangles().map(|t| lr.input_triangle(t)).collect(),
-        shape: Shape::of(lr),
+        input_triangle: input_triangles(lr, |t| lr.input_triangle(t)),
+        shape: Shape::of(lr, shape),
         decoder_table: None,
     }
 }
 
 /// The `LRBE` section of a built bit-efficient LR.
-pub(super) fn lr_compact_section(lr: &CompactLr) -> Encoded {
+/// With `shape`, the triangles as a reader numbers them (see [`Shape::of`]).
+pub(super) fn lr_compact_section(lr: &CompactLr, shape: bool) -> Encoded {
     let t = lr.tables();
     let header = lr_compact_header(lr);
     let layout = header.layout().expect("a built LR fits its layout");
@@ -162,8 +178,8 @@ pub(super) fn lr_compact_section(lr: &CompactLr) -> Encoded {
         input_vertex: (0..t.vertex_id_bound())
             .map(|v| lr.input_vertex(Vertex(v)))
             .collect(),
-        input_triangle: t.triangles().map(|tri| lr.input_triangle(tri)).collect(),
-        shape: Shape::of(t),
+        input_triangle: input_triangles(t, |tri| lr.input_triangle(tri)),
+        shape: Shape::of(t, shape),
         decoder_table: None,
     }
 }
@@ -203,7 +219,7 @@ pub(super) fn edgebreaker_section(
         None => None,
     };
     let shape = if let (true, Some(decoded)) = (shape, &decoder_table) {
-        Shape::of(decoded)
+        Shape::of(decoded, true)
     } else {
         Shape {
             id_bound: encoded.triangle_order.len() as u32,
@@ -231,7 +247,8 @@ pub(super) fn edgebreaker_section(
 }
 
 /// The `STRP` section of built strips.
-pub(super) fn strips_section(cts: &Cts) -> Encoded {
+/// With `shape`, the triangles as a reader numbers them (see [`Shape::of`]).
+pub(super) fn strips_section(cts: &Cts, shape: bool) -> Encoded {
     let header = StrpHeader {
         m: cts.vertex_id_bound(),
         len: cts.t().len() as u32,
@@ -245,8 +262,8 @@ pub(super) fn strips_section(cts: &Cts) -> Encoded {
         tag: Tag::STRP,
         payload: p,
         input_vertex: cts.vertices().map(|v| cts.input_vertex(v)).collect(),
-        input_triangle: cts.triangles().map(|t| cts.input_triangle(t)).collect(),
-        shape: Shape::of(cts),
+        input_triangle: input_triangles(cts, |t| cts.input_triangle(t)),
+        shape: Shape::of(cts, shape),
         decoder_table: None,
     }
 }

@@ -196,8 +196,12 @@ fn table_sections(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<SectionByt
     if options.orient != Orient::AsGiven {
         return oriented_sections(&crate::mesh::orient(mesh), options);
     }
-    let table = CornerTable::from_mesh(mesh)?;
-    sections(mesh, Built::Table(&table), options, None)
+    sections(
+        mesh,
+        Source::Table(CornerTable::from_mesh(mesh)?),
+        options,
+        None,
+    )
 }
 
 /// Every section of the repaired mesh of `oriented`, with `FLIP` as [`encode_oriented`] says.
@@ -207,7 +211,7 @@ fn oriented_sections(oriented: &Oriented, options: &EncodeOptions) -> Result<Vec
     let record = options.orient == Orient::Repair && oriented.flipped_count() > 0;
     let flipped = record.then_some(oriented.flipped.as_slice());
     let table = CornerTable::from_mesh(mesh)?;
-    sections(mesh, Built::Table(&table), options, flipped)
+    sections(mesh, Source::Table(table), options, flipped)
 }
 
 /// Encodes `mesh` with a connectivity already built from it (`built` must come from this
@@ -227,10 +231,16 @@ pub fn encode_built(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Resul
                 .into(),
         ));
     }
-    Ok(assemble(&sections(mesh, built, options, None)?))
+    Ok(assemble(&sections(
+        mesh,
+        Source::Built(built),
+        options,
+        None,
+    )?))
 }
 
-/// The connectivity section of `built`.
+/// The connectivity section of `built`; with `shape`, the triangles as a reader numbers
+/// them (for attributes and parts).
 fn connectivity(
     built: Built,
     options: &EncodeOptions,
@@ -238,49 +248,75 @@ fn connectivity(
     predicted: bool,
 ) -> Result<Encoded> {
     Ok(match built {
-        Built::Lr(lr) => connectivity::lr_section(lr),
-        Built::LrCompact(lr) => connectivity::lr_compact_section(lr),
-        Built::Strips(cts) => connectivity::strips_section(cts),
+        Built::Lr(lr) => connectivity::lr_section(lr, shape),
+        Built::LrCompact(lr) => connectivity::lr_compact_section(lr, shape),
+        Built::Strips(cts) => connectivity::strips_section(cts, shape),
         Built::Table(table) => match options.connectivity {
-            Connectivity::Lr => connectivity::lr_section(&Lr::build(table, &options.lr)?),
+            Connectivity::Lr => connectivity::lr_section(&Lr::build(table, &options.lr)?, shape),
             Connectivity::Edgebreaker => {
                 connectivity::edgebreaker_section(table, shape, predicted)?
             }
             Connectivity::Strips => {
-                connectivity::strips_section(&Cts::build(table, &options.strips)?)
+                connectivity::strips_section(&Cts::build(table, &options.strips)?, shape)
             }
-            Connectivity::LrCompact => connectivity::lr_compact_section(&CompactLr::build(
-                table,
-                &CompactOptions {
-                    lr: options.lr,
-                    periods: options.periods.clone(),
-                },
-            )?),
+            Connectivity::LrCompact => connectivity::lr_compact_section(
+                &CompactLr::build(
+                    table,
+                    &CompactOptions {
+                        lr: options.lr,
+                        periods: options.periods.clone(),
+                    },
+                )?,
+                shape,
+            ),
         },
     })
+}
+
+/// Where the connectivity comes from: built already, or a corner table the encoding owns and
+/// frees once the connectivity section is made, before the geometry (24 bytes per triangle).
+enum Source<'a> {
+    Built(Built<'a>),
+    Table(CornerTable),
 }
 
 /// Every section of the container, in the order this crate writes them; with `flipped`
 /// (per input triangle), the reversed ones in `FLIP`.
 fn sections(
     mesh: &Mesh,
-    built: Built,
+    source: Source,
     options: &EncodeOptions,
     flipped: Option<&[bool]>,
 ) -> Result<Vec<SectionBytes>> {
-    let kept = match built {
-        Built::Table(t) => t.kept_aside(),
-        Built::Lr(lr) => lr.kept_aside(),
-        Built::LrCompact(lr) => lr.kept_aside(),
-        Built::Strips(cts) => cts.kept_aside(),
-    };
-    // Per-corner attributes, parts and predicted values need the triangles as a reader
-    // numbers them.
+    // Predicted values need the triangles as a reader numbers them, Edgebreaker's decoder
+    // table; attributes and parts need them on every kind.
     let predicted = options.level > 0;
-    let shape = mesh.has_per_corner_attributes()
+    let edgebreaker_shape = mesh.has_per_corner_attributes()
         || mesh.parts.is_some()
         || (predicted && !mesh.attributes.is_empty());
-    let encoded = connectivity(built, options, shape, predicted)?;
+    let shape = edgebreaker_shape || !mesh.attributes.is_empty();
+    let section = |built: Built| {
+        let shape = match built {
+            Built::Table(_) if options.connectivity == Connectivity::Edgebreaker => {
+                edgebreaker_shape
+            }
+            _ => shape,
+        };
+        connectivity(built, options, shape, predicted)
+    };
+    let (encoded, kept) = match source {
+        Source::Built(built) => {
+            let kept = match built {
+                Built::Table(t) => t.kept_aside(),
+                Built::Lr(lr) => lr.kept_aside(),
+                Built::LrCompact(lr) => lr.kept_aside(),
+                Built::Strips(cts) => cts.kept_aside(),
+            };
+            (section(built)?, kept.to_vec())
+        }
+        Source::Table(table) => (section(Built::Table(&table))?, table.kept_aside().to_vec()),
+    };
+    let kept = kept.as_slice();
     let m = encoded.input_vertex.len() as u32;
     let per_vertex = |v: u32| encoded.input_vertex[v as usize] as usize;
     let triangle_total = encoded.input_triangle.len() + kept.len();

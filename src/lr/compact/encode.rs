@@ -30,7 +30,7 @@ impl CompactLr {
         let prepared = Prepared::new(ct)?;
         let period = choose_period(&prepared, &options.periods, options.lr.seed);
         let rings = prepared.rings(period, options.lr.tries, options.lr.seed);
-        let lr = Lr::from_rings(ct, &prepared, rings)?;
+        let lr = Lr::from_rings(ct, prepared, rings)?;
         CompactLr::encode(lr, period)
     }
 
