@@ -281,31 +281,37 @@ fn match_edges(nv: u32, v: &[u32]) -> (Vec<u32>, u32, u32) {
     for i in 0..nv as usize {
         start[i + 1] += start[i];
     }
-    // (higher vertex, corner) per half-edge, bucketed by lower vertex.
-    let mut bucket = vec![(0u32, 0u32); corners];
+    // The corner of each half-edge, bucketed by lower vertex: 4 bytes per corner (the higher
+    // vertex is read again from `v` where it is needed, not stored beside it).
+    let mut bucket = vec![0u32; corners];
     let mut fill = start.clone();
     for c in 0..corners as u32 {
         let (a, b) = (v[next(c) as usize], v[prev(c) as usize]);
         let slot = &mut fill[a.min(b) as usize];
-        bucket[*slot as usize] = (a.max(b), c);
+        bucket[*slot as usize] = c;
         *slot += 1;
     }
     drop(fill);
+    let higher = |c: u32| v[next(c) as usize].max(v[prev(c) as usize]);
 
     let mut o = vec![NONE; corners];
     let mut count = vec![0u32; nv as usize];
     let mut first = vec![NONE; nv as usize];
     let (mut inconsistent, mut nonmanifold) = (0u32, 0u32);
+    // The bucket being matched, with the higher vertex of each corner read once.
+    let mut entries: Vec<(u32, u32)> = Vec::new();
     for lo in 0..nv as usize {
-        let entries = &bucket[start[lo] as usize..start[lo + 1] as usize];
-        for &(hi, c) in entries {
+        entries.clear();
+        let corners = &bucket[start[lo] as usize..start[lo + 1] as usize];
+        entries.extend(corners.iter().map(|&c| (higher(c), c)));
+        for &(hi, c) in &entries {
             let n = &mut count[hi as usize];
             *n += 1;
             if *n == 1 {
                 first[hi as usize] = c;
             }
         }
-        for &(hi, c) in entries {
+        for &(hi, c) in &entries {
             let d = first[hi as usize];
             match count[hi as usize] {
                 2 if c != d => {
@@ -321,7 +327,7 @@ fn match_edges(nv: u32, v: &[u32]) -> (Vec<u32>, u32, u32) {
                 _ => {}
             }
         }
-        for &(hi, _) in entries {
+        for &(hi, _) in &entries {
             count[hi as usize] = 0;
         }
     }

@@ -64,12 +64,6 @@ pub fn flip_edges(mesh: &mut Mesh, count: usize, rng: &mut Rng) {
             valence[v as usize] += 1;
         }
     }
-    let key = |a: u32, b: u32| ((a.min(b) as u64) << 32) | a.max(b) as u64;
-    let mut edges: std::collections::HashSet<u64> = mesh
-        .triangles
-        .iter()
-        .flat_map(|t| [key(t[0], t[1]), key(t[1], t[2]), key(t[2], t[0])])
-        .collect();
     // The table is not updated as we flip, so each triangle is flipped at most once.
     let mut touched = vec![false; mesh.triangles.len()];
     for _ in 0..count {
@@ -87,14 +81,12 @@ pub fn flip_edges(mesh: &mut Mesh, count: usize, rng: &mut Rng) {
         if x == y
             || valence[a as usize] <= 3
             || valence[b as usize] <= 3
-            || edges.contains(&key(x, y))
+            || joined(mesh, &table, c, [x, y])
         {
             continue;
         }
         mesh.triangles[t] = [x, y, b];
         mesh.triangles[u] = [y, x, a];
-        edges.remove(&key(a, b));
-        edges.insert(key(x, y));
         valence[a as usize] -= 1;
         valence[b as usize] -= 1;
         valence[x as usize] += 1;
@@ -102,6 +94,48 @@ pub fn flip_edges(mesh: &mut Mesh, count: usize, rng: &mut Rng) {
         touched[t] = true;
         touched[u] = true;
     }
+}
+
+/// Whether some triangle of `mesh` holds both `x` and `y` now, `at_x` being a corner at `x`
+/// of a triangle not flipped yet. Such a triangle is one around `x` in `table` (the mesh
+/// before any flip) or a neighbour of one: a flip gives a vertex only to the neighbour across
+/// the flipped edge of a triangle that holds it, and flips each triangle once at most. A
+/// walk of a few dozen triangles, where a set of every edge would take some 40 bytes per
+/// triangle.
+fn joined(mesh: &Mesh, table: &CornerTable, at_x: Corner, [x, y]: [u32; 2]) -> bool {
+    let holds = |t: usize| {
+        let tri = mesh.triangles[t];
+        tri.contains(&x) && tri.contains(&y)
+    };
+    let near = |k: Corner| {
+        let t = k.idx() / 3;
+        holds(t)
+            || (0..3).any(|i| {
+                table
+                    .opposite(Corner((3 * t + i) as u32))
+                    .is_some_and(|d| holds(d.idx() / 3))
+            })
+    };
+    // Around x one way, then (on a boundary) the other way.
+    let mut k = at_x;
+    loop {
+        if near(k) {
+            return true;
+        }
+        match table.swing(k) {
+            Some(n) if n == at_x => return false,
+            Some(n) => k = n,
+            None => break,
+        }
+    }
+    let mut k = at_x;
+    while let Some(p) = table.unswing(k) {
+        if p == at_x || near(p) {
+            return p != at_x;
+        }
+        k = p;
+    }
+    false
 }
 
 /// An irregular closed genus-1 mesh of at least `min_triangles` triangles: a torus grid with a

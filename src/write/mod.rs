@@ -239,6 +239,39 @@ pub fn encode_built(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Resul
     )?))
 }
 
+/// A connectivity built from a corner table for its section.
+enum Made {
+    Lr(Lr),
+    LrCompact(CompactLr),
+    Strips(Cts),
+}
+
+/// The connectivity `options` choose, built from `table`; `None` for Edgebreaker, whose
+/// section is written from the table itself.
+fn make(table: &CornerTable, options: &EncodeOptions) -> Result<Option<Made>> {
+    Ok(match options.connectivity {
+        Connectivity::Lr => Some(Made::Lr(Lr::build(table, &options.lr)?)),
+        Connectivity::Strips => Some(Made::Strips(Cts::build(table, &options.strips)?)),
+        Connectivity::LrCompact => Some(Made::LrCompact(CompactLr::build(
+            table,
+            &CompactOptions {
+                lr: options.lr,
+                periods: options.periods.clone(),
+            },
+        )?)),
+        Connectivity::Edgebreaker => None,
+    })
+}
+
+/// The section of a connectivity built here.
+fn made_section(made: &Made, shape: bool) -> Encoded {
+    match made {
+        Made::Lr(lr) => connectivity::lr_section(lr, shape),
+        Made::LrCompact(lr) => connectivity::lr_compact_section(lr, shape),
+        Made::Strips(cts) => connectivity::strips_section(cts, shape),
+    }
+}
+
 /// The connectivity section of `built`; with `shape`, the triangles as a reader numbers
 /// them (for attributes and parts).
 fn connectivity(
@@ -251,24 +284,9 @@ fn connectivity(
         Built::Lr(lr) => connectivity::lr_section(lr, shape),
         Built::LrCompact(lr) => connectivity::lr_compact_section(lr, shape),
         Built::Strips(cts) => connectivity::strips_section(cts, shape),
-        Built::Table(table) => match options.connectivity {
-            Connectivity::Lr => connectivity::lr_section(&Lr::build(table, &options.lr)?, shape),
-            Connectivity::Edgebreaker => {
-                connectivity::edgebreaker_section(table, shape, predicted)?
-            }
-            Connectivity::Strips => {
-                connectivity::strips_section(&Cts::build(table, &options.strips)?, shape)
-            }
-            Connectivity::LrCompact => connectivity::lr_compact_section(
-                &CompactLr::build(
-                    table,
-                    &CompactOptions {
-                        lr: options.lr,
-                        periods: options.periods.clone(),
-                    },
-                )?,
-                shape,
-            ),
+        Built::Table(table) => match make(table, options)? {
+            Some(made) => made_section(&made, shape),
+            None => connectivity::edgebreaker_section(table, shape, predicted)?,
         },
     })
 }
@@ -314,7 +332,18 @@ fn sections(
             };
             (section(built)?, kept.to_vec())
         }
-        Source::Table(table) => (section(Built::Table(&table))?, table.kept_aside().to_vec()),
+        Source::Table(table) => {
+            let kept = table.kept_aside().to_vec();
+            match make(&table, options)? {
+                // The table is freed before the section is written, the built connectivity
+                // after.
+                Some(made) => {
+                    drop(table);
+                    (made_section(&made, shape), kept)
+                }
+                None => (section(Built::Table(&table))?, kept),
+            }
+        }
     };
     let kept = kept.as_slice();
     let m = encoded.input_vertex.len() as u32;
