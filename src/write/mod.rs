@@ -239,7 +239,9 @@ pub fn encode_built(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Resul
     )?))
 }
 
-/// A connectivity built from a corner table for its section.
+/// A connectivity built from a corner table for its section (one per encode: the size of the
+/// variants does not matter).
+#[allow(clippy::large_enum_variant)]
 enum Made {
     Lr(Lr),
     LrCompact(CompactLr),
