@@ -42,7 +42,7 @@ impl Lr {
     /// array is freed once the steps after it no longer read it, and the components first:
     /// the encoder's peak memory is here.
     pub(super) fn from_rings(ct: &CornerTable, prepared: Prepared, rings: Rings) -> Result<Lr> {
-        let mesh = &prepared.into_closed();
+        let mesh = prepared.into_closed();
         let real_vertices = mesh.real_vertices;
         let Rings {
             ring_corner,
@@ -93,12 +93,12 @@ impl Lr {
         let mut slots_of = vec![0u8; nt_real];
         let mut slot_tip_corner = vec![NONE; 2 * m_r as usize];
         for (v, &c) in ring_corner.iter().enumerate() {
-            let r = mesh.o[c as usize];
+            let r = mesh.o(c);
             for (side, tip) in [(LEFT, c), (RIGHT, r)] {
                 let t = tip / 3;
                 if t < mesh.real_triangles {
                     slots_of[t as usize] += 1;
-                    tables.lr[2 * v + side] = vertex_of(mesh.v[tip as usize]);
+                    tables.lr[2 * v + side] = vertex_of(mesh.v(tip));
                     slot_tip_corner[2 * v + side] = tip;
                 } else {
                     tables.lr[2 * v + side] = NULL;
@@ -133,7 +133,7 @@ impl Lr {
         for t in t0_before_warts {
             for i in 0..3 {
                 let k = 3 * t as u32 + i;
-                let u = mesh.o[k as usize] / 3;
+                let u = mesh.o(k) / 3;
                 if u >= mesh.real_triangles {
                     continue;
                 }
@@ -144,7 +144,7 @@ impl Lr {
                 // The slot now holds the T0, with k (facing the shared edge) as its tip corner.
                 let slot = slot as usize;
                 t2_redundant[u as usize] = NONE;
-                tables.lr[slot] = vertex_of(mesh.v[k as usize]) | WART;
+                tables.lr[slot] = vertex_of(mesh.v(k)) | WART;
                 slot_tip_corner[slot] = k;
                 is_t0[t] = false;
                 t0_wart += 1;
@@ -211,10 +211,13 @@ impl Lr {
         for &t in &t0_list {
             for i in 0..3 {
                 let c = 3 * t + i;
-                lr_struct.tables.vo_v.push(vertex_of(mesh.v[c as usize]));
+                lr_struct.tables.vo_v.push(vertex_of(mesh.v(c)));
                 lr_struct.tables.vo_o.push(truth_o(c));
             }
         }
+        // The closed tables (a copy of the table's on a mesh with boundaries) are not read
+        // again.
+        drop(mesh);
 
         // The two transversal corners of a slot: left 0 and 2, right 4 and 6.
         let transversal = |tip: u32, side: usize| {

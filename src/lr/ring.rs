@@ -10,13 +10,20 @@ use crate::corner_table::{CornerTable, NONE};
 use crate::error::{Error, Result};
 use crate::ops::CornerOps;
 use crate::rng::Rng;
-use std::borrow::Cow;
 
-/// The corner table closed by dummy vertices and triangles over each boundary loop; a
-/// closed mesh's tables are borrowed, not copied (they are most of an encode's memory).
+/// The corner table closed by dummy vertices and triangles over each boundary loop. The
+/// table's `V` and `O` are borrowed, not copied (they are most of an encode's memory): the
+/// dummy triangles live in arrays of their own, and a boundary corner's opposite (`NONE` in
+/// the table) is found by its rank among the boundary corners.
 pub(super) struct Closed<'a> {
-    pub(super) v: Cow<'a, [u32]>,
-    pub(super) o: Cow<'a, [u32]>,
+    real_v: &'a [u32],
+    real_o: &'a [u32],
+    /// `V` and `O` of the dummy triangles, from corner `3 · real_triangles` on.
+    dummy_v: Vec<u32>,
+    dummy_o: Vec<u32>,
+    /// The boundary corners in increasing order: the `k`-th faces corner 2 of dummy
+    /// triangle `real_triangles + k`.
+    boundary: Vec<u32>,
     pub(super) real_triangles: u32,
     pub(super) real_vertices: u32,
     /// Real and dummy vertices.
@@ -43,100 +50,118 @@ impl<'a> Closed<'a> {
     /// Adds, for every boundary half-edge `a -> b` (facing corner `c`), a dummy triangle
     /// `(b, a, d)` where `d` is the dummy vertex of that boundary loop.
     fn new(ct: &'a CornerTable) -> Result<Closed<'a>> {
-        let (v_in, o_in) = (ct.v_table(), ct.o_table());
-        let real_triangles = (v_in.len() / 3) as u32;
+        let (real_v, real_o) = (ct.v_table(), ct.o_table());
+        let real_triangles = (real_v.len() / 3) as u32;
         let real_vertices = ct.vertex_id_bound();
-        let boundary: Vec<u32> = (0..v_in.len() as u32)
-            .filter(|&c| o_in[c as usize] == NONE)
+        let boundary: Vec<u32> = (0..real_v.len() as u32)
+            .filter(|&c| real_o[c as usize] == NONE)
             .collect();
-        let total = v_in.len() + 3 * boundary.len();
+        let total = real_v.len() + 3 * boundary.len();
         if total >= (NONE / 2) as usize {
             return Err(Error::Unsupported("mesh too large for LR".into()));
         }
-        if boundary.is_empty() {
-            return Ok(Closed {
-                v: Cow::Borrowed(v_in),
-                o: Cow::Borrowed(o_in),
-                real_triangles,
-                real_vertices,
-                total_vertices: real_vertices,
-            });
-        }
-        // Allocated at their final length: growing them would hold two copies at once.
-        let widened = |table: &[u32]| {
-            let mut out = Vec::with_capacity(total);
-            out.extend_from_slice(table);
-            out.resize(total, NONE);
-            out
-        };
-        let (mut v, mut o) = (widened(v_in), widened(o_in));
+        let dummies = 3 * boundary.len();
+        let (mut v, mut o) = (vec![NONE; dummies], vec![NONE; dummies]);
         // The boundary half-edge arriving at each vertex (one at most: one fan per vertex).
-        let mut incoming = vec![NONE; real_vertices as usize];
+        let mut incoming = vec![
+            NONE;
+            if dummies > 0 {
+                real_vertices as usize
+            } else {
+                0
+            }
+        ];
         for &c in &boundary {
-            incoming[v[prev3(c) as usize] as usize] = c;
+            incoming[real_v[prev3(c) as usize] as usize] = c;
         }
-        // Dummy triangle of boundary corner c, by the order of `boundary`.
-        let mut dummy_of = vec![NONE; v_in.len()];
+        // Dummy triangle k (of boundary corner k), at 3k in the dummy arrays.
+        let rank = |c: u32| boundary.binary_search(&c).expect("a boundary corner");
+        let base_corner = 3 * real_triangles;
         for (k, &c) in boundary.iter().enumerate() {
-            dummy_of[c as usize] = real_triangles + k as u32;
-        }
-        let mut next_dummy_vertex = real_vertices;
-        for &c in &boundary {
-            let t = dummy_of[c as usize];
-            let (a, b) = (v[next3(c) as usize], v[prev3(c) as usize]);
-            let base = 3 * t as usize;
+            let (a, b) = (real_v[next3(c) as usize], real_v[prev3(c) as usize]);
+            let base = 3 * k;
             v[base] = b;
             v[base + 1] = a;
             o[base + 2] = c;
-            o[c as usize] = base as u32 + 2;
             // Corner 0 (at b) faces a -> d: the dummy of the boundary half-edge into a.
-            let before = dummy_of[incoming[a as usize] as usize];
-            o[base] = 3 * before + 1;
-            o[3 * before as usize + 1] = base as u32;
+            let before = rank(incoming[a as usize]);
+            o[base] = base_corner + 3 * before as u32 + 1;
+            o[3 * before + 1] = base_corner + base as u32;
         }
+        drop(incoming);
         // One dummy vertex per loop: walk the loop through the corner-0/corner-1 links.
-        for &c in &boundary {
-            let t = dummy_of[c as usize] as usize;
-            if v[3 * t + 2] != NONE {
+        let mut next_dummy_vertex = real_vertices;
+        for k in 0..boundary.len() {
+            if v[3 * k + 2] != NONE {
                 continue;
             }
             let d = next_dummy_vertex;
             next_dummy_vertex += 1;
-            let mut u = t;
+            let mut u = k;
             while v[3 * u + 2] == NONE {
                 v[3 * u + 2] = d;
-                u = o[3 * u] as usize / 3;
+                u = (o[3 * u] - base_corner) as usize / 3;
             }
         }
         Ok(Closed {
-            v: Cow::Owned(v),
-            o: Cow::Owned(o),
+            real_v,
+            real_o,
+            dummy_v: v,
+            dummy_o: o,
+            boundary,
             real_triangles,
             real_vertices,
             total_vertices: next_dummy_vertex,
         })
     }
 
+    /// Real and dummy triangles.
+    pub(super) fn triangle_count(&self) -> usize {
+        (self.real_v.len() + self.dummy_v.len()) / 3
+    }
+
+    /// The vertex of corner `c`.
+    #[inline(always)]
+    pub(super) fn v(&self, c: u32) -> u32 {
+        let c = c as usize;
+        match self.real_v.get(c) {
+            Some(&x) => x,
+            None => self.dummy_v[c - self.real_v.len()],
+        }
+    }
+
+    /// The opposite of corner `c` (never `NONE`: the mesh is closed).
+    #[inline(always)]
+    pub(super) fn o(&self, c: u32) -> u32 {
+        match self.real_o.get(c as usize) {
+            Some(&NONE) => {
+                let k = self.boundary.binary_search(&c).expect("a boundary corner");
+                3 * (self.real_triangles + k as u32) + 2
+            }
+            Some(&d) => d,
+            None => self.dummy_o[c as usize - self.real_o.len()],
+        }
+    }
+
     #[inline]
     fn right(&self, c: u32) -> u32 {
-        self.o[prev3(c) as usize]
+        self.o(prev3(c))
     }
 }
 
 /// RING-EXPANDER (section 4.2) from seed corner `s`: marks invaded triangles and visited
 /// vertices. Dummy vertices must already be marked visited.
 fn ring_expander(mesh: &Closed, s: u32, vm: &mut [bool], tm: &mut [bool]) {
-    let v = &mesh.v;
-    vm[v[next3(s) as usize] as usize] = true;
-    vm[v[prev3(s) as usize] as usize] = true;
-    let stop = mesh.o[s as usize];
+    vm[mesh.v(next3(s)) as usize] = true;
+    vm[mesh.v(prev3(s)) as usize] = true;
+    let stop = mesh.o(s);
     let mut c = s;
     loop {
-        if !vm[v[c as usize] as usize] {
-            vm[v[c as usize] as usize] = true;
+        if !vm[mesh.v(c) as usize] {
+            vm[mesh.v(c) as usize] = true;
             tm[c as usize / 3] = true;
         } else if !tm[c as usize / 3] {
-            c = mesh.o[c as usize];
+            c = mesh.o(c);
         }
         c = mesh.right(c);
         if c == stop {
@@ -158,19 +183,18 @@ fn hybrid_ring_expander(
     tm: &mut [bool],
     deque: &mut std::collections::VecDeque<u32>,
 ) {
-    let v = &mesh.v;
-    vm[v[next3(s) as usize] as usize] = true;
-    vm[v[prev3(s) as usize] as usize] = true;
+    vm[mesh.v(next3(s)) as usize] = true;
+    vm[mesh.v(prev3(s)) as usize] = true;
     deque.clear();
     let mut invaded = 0u32;
     let mut c = s;
     loop {
-        if !vm[v[c as usize] as usize] {
-            vm[v[c as usize] as usize] = true;
+        if !vm[mesh.v(c) as usize] {
+            vm[mesh.v(c) as usize] = true;
             tm[c as usize / 3] = true;
             // c.l and c.r: the corners facing the two edges the invasion exposed.
-            deque.push_back(mesh.o[next3(c) as usize]);
-            deque.push_back(mesh.o[prev3(c) as usize]);
+            deque.push_back(mesh.o(next3(c)));
+            deque.push_back(mesh.o(prev3(c)));
             invaded = (invaded + 1) % period;
         }
         let candidate = if invaded == 0 {
@@ -196,7 +220,7 @@ struct Component {
 }
 
 fn components(mesh: &Closed) -> Vec<Component> {
-    let nt = mesh.v.len() / 3;
+    let nt = mesh.triangle_count();
     let mut seen = vec![false; nt];
     let mut vertex_seen = vec![false; mesh.real_vertices as usize];
     let mut out = Vec::new();
@@ -218,13 +242,13 @@ fn components(mesh: &Closed) -> Vec<Component> {
                 comp.real_triangles.push(t);
             }
             for i in 0..3 {
-                let c = 3 * t as usize + i;
-                let x = mesh.v[c];
+                let c = 3 * t + i;
+                let x = mesh.v(c);
                 if x < mesh.real_vertices && !vertex_seen[x as usize] {
                     vertex_seen[x as usize] = true;
                     comp.vertices.push(x);
                 }
-                let u = mesh.o[c] / 3;
+                let u = mesh.o(c) / 3;
                 if !seen[u as usize] {
                     seen[u as usize] = true;
                     stack.push(u);
@@ -240,7 +264,7 @@ fn components(mesh: &Closed) -> Vec<Component> {
 fn ring_edges(mesh: &Closed, tm: &[bool], t: u32) -> usize {
     let inside = tm[t as usize];
     (0..3)
-        .filter(|&i| tm[mesh.o[3 * t as usize + i] as usize / 3] != inside)
+        .filter(|&i| tm[mesh.o(3 * t + i) as usize / 3] != inside)
         .count()
 }
 
@@ -252,7 +276,7 @@ fn t0_after_warts(mesh: &Closed, comp: &Component, tm: &[bool]) -> usize {
         .filter(|&&t| {
             ring_edges(mesh, tm, t) == 0
                 && (0..3).all(|i| {
-                    let u = mesh.o[3 * t as usize + i] / 3;
+                    let u = mesh.o(3 * t + i) / 3;
                     u >= mesh.real_triangles || ring_edges(mesh, tm, u) != 2
                 })
         })
@@ -370,7 +394,7 @@ impl<'m> Expansion<'m> {
             rng: Rng::new(seed),
             deque: std::collections::VecDeque::new(),
             vm,
-            tm: vec![false; mesh.v.len() / 3],
+            tm: vec![false; mesh.triangle_count()],
         }
     }
 
@@ -435,7 +459,7 @@ impl Rings {
             .iter()
             .filter(|&&t| tm[t as usize])
             .flat_map(|&t| 3 * t..3 * t + 3)
-            .find(|&c| !tm[mesh.o[c as usize] as usize / 3])
+            .find(|&c| !tm[mesh.o(c) as usize / 3])
             .expect("an invaded region has a boundary");
         let first = self.ring_corner.len();
         let mut c = start;
@@ -443,8 +467,8 @@ impl Rings {
             self.ring_corner.push(c);
             // Rotate around the far vertex through invaded triangles to the next ring edge.
             let mut k = prev3(c);
-            while tm[mesh.o[k as usize] as usize / 3] {
-                k = prev3(mesh.o[k as usize]);
+            while tm[mesh.o(k) as usize / 3] {
+                k = prev3(mesh.o(k));
             }
             c = k;
             if c == start {
@@ -456,7 +480,7 @@ impl Rings {
             return;
         }
         for (k, &c) in self.ring_corner[first..].iter().enumerate() {
-            self.ring_id[mesh.v[prev3(c) as usize] as usize] = (first + k) as u32;
+            self.ring_id[mesh.v(prev3(c)) as usize] = (first + k) as u32;
         }
         self.starts.push(self.ring_corner.len() as u32);
     }
@@ -475,9 +499,7 @@ impl Rings {
         };
         let corners = self.ring_corner.iter().enumerate().skip(first);
         corners
-            .filter(|&(v, &c)| {
-                far(v, mesh.v[c as usize]) || far(v, mesh.v[mesh.o[c as usize] as usize])
-            })
+            .filter(|&(v, &c)| far(v, mesh.v(c)) || far(v, mesh.v(mesh.o(c))))
             .count() as u64
     }
 }
