@@ -503,3 +503,48 @@ fn duplicate_positions_round_trip_up_to_rotation() {
     round_trip(&mesh, false);
     round_trip(&mesh, true);
 }
+
+/// `summarize` (what `lrmesh info` prints) reads the connectivity and positions by their
+/// headers alone: damage inside their data leaves it answering as for the intact file, where
+/// `open` refuses the file; damage to a header it reads is an error naming the section.
+#[test]
+fn summarize_reads_headers_only() {
+    let limits = Limits::default();
+    let mesh = generate::irregular_torus(4000, 3);
+    for connectivity in [
+        Connectivity::Lr,
+        Connectivity::LrCompact,
+        Connectivity::Strips,
+        Connectivity::Edgebreaker,
+    ] {
+        let options = EncodeOptions {
+            connectivity,
+            ..EncodeOptions::default()
+        };
+        let bytes = encode(&mesh, &options).unwrap();
+        let intact = open(&bytes, &limits).unwrap().summary();
+        assert_eq!(lrmesh::read::summarize(&bytes, &limits).unwrap(), intact);
+        let data = lrmesh::read::Sections::parse(&bytes, &limits)
+            .unwrap()
+            .sections
+            .iter()
+            .find(|s| s.tag.name() != "GEOM" && s.flags.is_required() && s.bytes.len() > 64)
+            .map(|s| (s.offset as usize, s.bytes.len()))
+            .unwrap();
+        // A byte in the middle of the connectivity's data, then in its header.
+        let mut damaged = bytes.clone();
+        damaged[data.0 + data.1 / 2] ^= 0x5A;
+        assert!(open(&damaged, &limits).is_err(), "{connectivity:?}");
+        assert_eq!(
+            lrmesh::read::summarize(&damaged, &limits).unwrap(),
+            intact,
+            "{connectivity:?}"
+        );
+        if connectivity != Connectivity::Edgebreaker {
+            let mut damaged = bytes.clone();
+            damaged[data.0] ^= 0x01; // the header's vertex count
+            let e = lrmesh::read::summarize(&damaged, &limits).unwrap_err();
+            assert!(matches!(e, Error::Format(_)), "{connectivity:?}: {e}");
+        }
+    }
+}

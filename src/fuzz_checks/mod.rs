@@ -97,7 +97,16 @@ pub fn edgebreaker(data: &[u8]) {
 /// section parsers.)
 pub fn container(data: &[u8]) {
     let limits = Limits::default();
+    // The headers-only summary: never a panic, and on a well-formed file the summary of
+    // the whole open.
+    let summary = crate::read::summarize(data, &limits);
     let quick = open(data, &limits);
+    if let Ok(file) = &quick {
+        match &summary {
+            Ok(summary) => assert_eq!(summary, &file.summary(), "summarize and open agree"),
+            Err(e) => panic!("summarize refuses a well-formed file: {e}"),
+        }
+    }
     let verified = open_verified(data, &limits);
     let file = match (quick, &verified) {
         (Err(e), Err(f)) => {

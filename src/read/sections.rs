@@ -43,6 +43,16 @@ impl<'a> Sections<'a> {
     /// [`Error::Format`] naming the part, byte offset and rule; [`Error::UnsupportedVersion`];
     /// [`Error::UnknownRequiredSection`]; [`Error::LimitExceeded`].
     pub fn parse(bytes: &'a [u8], limits: &Limits) -> Result<Sections<'a>> {
+        Sections::parse_checking(bytes, limits, |_| true)
+    }
+
+    /// As [`Sections::parse`], verifying the checksum of a section only when `check` says
+    /// so of its tag (a reader of headers alone need not read every byte).
+    pub(crate) fn parse_checking(
+        bytes: &'a [u8],
+        limits: &Limits,
+        check: impl Fn(Tag) -> bool,
+    ) -> Result<Sections<'a>> {
         let header_err = |at: usize, rule: Rule, message: String| {
             format_error("header", at as u64, rule, message)
         };
@@ -163,7 +173,7 @@ impl<'a> Sections<'a> {
                     )
                 })?;
             let body = &bytes[e.offset as usize..end as usize];
-            if !checksum_matches(e.crc, format::section_checksum(body)) {
+            if check(e.tag) && !checksum_matches(e.crc, format::section_checksum(body)) {
                 return Err(format_error(&name, e.offset, Rule(8), "checksum mismatch"));
             }
             if sections.iter().any(|s| s.tag == e.tag) {

@@ -1,0 +1,217 @@
+//! [`summarize`]: what `lrmesh info` reports of a container, read from its header, its section
+//! table, its small sections and the headers of its connectivity and positions sections, not
+//! their data. On a file of hundreds of millions of triangles it reads a few pages where
+//! [`open`](super::open) reads every byte (checksums, every id in range).
+
+use super::fields::Fields;
+use super::summary::{ContainerSummary, PositionsSummary, SectionSummary};
+use super::{counts, positions, Limits, Sections};
+use crate::error::{Result, Rule};
+use crate::format::layout::{LrbeHeader, LrtbHeader, StrpHeader};
+use crate::format::{Kind, PositionEncoding, Tag, HEADER_LEN};
+
+/// The sections read by their headers alone: neither their checksums nor their data.
+const DATA: [Tag; 5] = [Tag::LRTB, Tag::LRBE, Tag::STRP, Tag::EBRK, Tag::GEOM];
+
+/// Sections whose figures need their data (attributes, parts, reversed triangles): a file
+/// with one is opened whole.
+const WHOLE: [Tag; 6] = [
+    Tag::ATTR,
+    Tag::PART,
+    Tag::FLIP,
+    Tag::NORM,
+    Tag::TEXC,
+    Tag::COLR,
+];
+
+/// The summary of the container `bytes`, equal to [`open`](super::open)`(bytes)?.summary()`
+/// on a well-formed file, read without the data of its connectivity and positions: their
+/// headers and lengths are checked, their checksums and contents are not (a fault there is
+/// `lrmesh verify`'s to find). Every other section is read and checked as `open` reads it; a
+/// file with attributes, parts or reversed triangles is opened whole.
+///
+/// # Errors
+/// As [`open`](super::open), for the parts read.
+pub fn summarize(bytes: &[u8], limits: &Limits) -> Result<ContainerSummary> {
+    let sections = Sections::parse_checking(bytes, limits, |tag| !DATA.contains(&tag))?;
+    if WHOLE.iter().any(|&tag| sections.section(tag).is_some()) {
+        return Ok(super::open(bytes, limits)?.summary());
+    }
+    let metadata = counts::metadata(&sections, limits)?;
+    let (mesh, _) = counts::mesh_record(&sections)?;
+    let m = mesh.vertices;
+    let triangles = mesh.triangles as u64 + mesh.kept as u64;
+    let per_triangle = |x: f64| {
+        if triangles == 0 {
+            0.0
+        } else {
+            x / triangles as f64
+        }
+    };
+    let section_len = |tag: Tag| sections.section(tag).map_or(0, |s| s.bytes.len() as u64);
+    let connectivity_bytes = [
+        Tag::LRTB,
+        Tag::EBRK,
+        Tag::STRP,
+        Tag::LRBE,
+        Tag::COPY,
+        Tag::COPC,
+        Tag::KEPT,
+        Tag::KEPC,
+    ]
+    .map(section_len)
+    .iter()
+    .sum::<u64>();
+    let rings = rings(&sections, mesh.kind, m)?;
+    let rpt = match (mesh.kind, rings) {
+        (Kind::LR, Some(r)) => {
+            let refs = 2 * r.m_r as u64
+                + 6 * r.t0 as u64
+                + 3 * r.records.unwrap_or(0) as u64
+                + (m - r.m_r) as u64;
+            Some(per_triangle(refs as f64))
+        }
+        (Kind::STRIPS, _) => {
+            let f = header_fields(&sections, Tag::STRP, StrpHeader::LEN, Rule(28))?;
+            let h = StrpHeader::read(f.bytes());
+            if h.m != m {
+                let message = format!("{} vertices, section MESH says {m}", h.m);
+                return Err(f.err(0, Rule(28), message));
+            }
+            f.expect_len(h.layout().map(|l| l.len), Rule(28))?;
+            Some(per_triangle((2 * h.len as u64 + h.m as u64) as f64))
+        }
+        _ => None,
+    };
+    let positions = positions_summary(&sections, m)?;
+    Ok(ContainerSummary {
+        version: format!("{}.{}", sections.major, sections.minor),
+        bytes: sections
+            .sections
+            .last()
+            .map_or(HEADER_LEN as u64, |s| s.offset + s.bytes.len() as u64),
+        sections: sections
+            .sections
+            .iter()
+            .map(|s| SectionSummary {
+                tag: s.tag.name(),
+                required: s.flags.is_required(),
+                offset: s.offset,
+                length: s.bytes.len() as u64,
+            })
+            .collect(),
+        connectivity: mesh.kind.name(),
+        vertices: mesh.output_vertices,
+        connectivity_vertices: m,
+        triangles,
+        kept_triangles: mesh.kept,
+        vertex_copies: m - mesh.output_vertices,
+        ring_vertices: rings.map(|r| r.m_r),
+        rings: rings.map(|r| r.rings),
+        t0_triangles: rings.map(|r| r.t0),
+        irregular_triangles: rings.and_then(|r| r.records),
+        connectivity_bytes,
+        connectivity_bpt: per_triangle(8.0 * connectivity_bytes as f64),
+        rpt,
+        quantized: positions.bits.is_some(),
+        positions,
+        attributes: Vec::new(),
+        attribute_details: Vec::new(),
+        parts: None,
+        keeps_order: sections.section(Tag::PERM).is_some(),
+        reversed_triangles: 0,
+        metadata,
+    })
+}
+
+/// The ring figures of an LR header.
+#[derive(Clone, Copy)]
+struct Rings {
+    m_r: u32,
+    rings: u32,
+    t0: u32,
+    /// Irregular-triangle records: the standard LR's (the bit-efficient one has none).
+    records: Option<u32>,
+}
+
+/// The section `tag` with at least `header` bytes.
+fn header_fields<'a>(
+    sections: &Sections<'a>,
+    tag: Tag,
+    header: usize,
+    rule: Rule,
+) -> Result<Fields<'a>> {
+    let f = Fields::new(sections.required(tag)?);
+    f.expect_at_least(header, rule)?;
+    Ok(f)
+}
+
+/// The ring figures of an LR kind's header, its vertex count and its section's length
+/// checked as the reader checks them ([V15], [V33]).
+fn rings(sections: &Sections, kind: Kind, m: u32) -> Result<Option<Rings>> {
+    let vertices = |f: &Fields, header_m: u32, rule: Rule| {
+        if header_m == m {
+            Ok(())
+        } else {
+            Err(f.err(
+                0,
+                rule,
+                format!("{header_m} vertices, section MESH says {m}"),
+            ))
+        }
+    };
+    Ok(match kind {
+        Kind::LR => {
+            let f = header_fields(sections, Tag::LRTB, LrtbHeader::LEN, Rule(15))?;
+            let h = LrtbHeader::read(f.bytes());
+            vertices(&f, h.m, Rule(15))?;
+            f.expect_len(h.layout().map(|l| l.len), Rule(15))?;
+            Some(Rings {
+                m_r: h.m_r,
+                rings: h.rings,
+                t0: h.t0,
+                records: Some(h.records),
+            })
+        }
+        Kind::LR_COMPACT => {
+            let f = header_fields(sections, Tag::LRBE, LrbeHeader::LEN, Rule(33))?;
+            let h = LrbeHeader::read(f.bytes());
+            vertices(&f, h.m, Rule(33))?;
+            f.expect_len(h.layout().map(|l| l.len), Rule(33))?;
+            Some(Rings {
+                m_r: h.m_r,
+                rings: h.rings,
+                t0: h.t0,
+                records: None,
+            })
+        }
+        _ => None,
+    })
+}
+
+/// The positions figures from the `GEOM` header: its encoding and grid.
+fn positions_summary(sections: &Sections, m: u32) -> Result<PositionsSummary> {
+    let rule = Rule(13);
+    let f = Fields::new(sections.required(Tag::GEOM)?);
+    let encoding = PositionEncoding(f.u32(0, rule)?);
+    let grid_bits = || positions::grid(&f, rule).map(|g| Some(g.bits));
+    let (name, bits) = match encoding {
+        PositionEncoding::F32 => ("f32", None),
+        PositionEncoding::QUANTIZED16 => ("grid16", Some(16)),
+        PositionEncoding::PREDICTED_GRID => ("predicted-grid", grid_bits()?),
+        PositionEncoding::ANCHORED_GRID => ("anchored-grid", grid_bits()?),
+        PositionEncoding::PREDICTED_F32 => ("predicted-f32", None),
+        PositionEncoding::BLOCKED => ("blocked-grid", grid_bits()?),
+        PositionEncoding::BLOCKED_F32 => ("blocked-f32", None),
+        other => {
+            return Err(f.err(0, rule, format!("unknown position encoding {}", other.0)));
+        }
+    };
+    let bytes = f.len() as u64;
+    Ok(PositionsSummary {
+        encoding: name,
+        bits,
+        bytes,
+        bits_per_vertex: 8.0 * bytes as f64 / m.max(1) as f64,
+    })
+}
