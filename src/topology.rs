@@ -110,31 +110,32 @@ impl TopologyReport {
         }
         let referenced_count = referenced.iter().filter(|&&r| r).count() as u64;
 
-        // Every use of an edge as (higher vertex, corner), bucketed by its lower vertex with a
-        // counting sort and sorted by the higher one within each bucket, so that the uses of
-        // one edge are adjacent: 8 bytes per use where sorting (key, corner) records takes 16.
-        // `start` counts each bucket, then (inclusive prefix sums, filled downwards) begins it.
-        let edge_uses = || {
-            tris.iter().enumerate().flat_map(|(t, tri)| {
-                (0..3).filter_map(move |i| {
-                    let (a, b) = (tri[i], tri[(i + 1) % 3]);
-                    (a != b).then_some((a.min(b), a.max(b), (3 * t + i) as u32))
-                })
-            })
+        // Every use of an edge as its corner `3t+i` (the edge from corner i to corner i+1 of
+        // triangle t), bucketed by its lower vertex with a counting sort: 4 bytes per use, the
+        // higher vertex read again per bucket. `start` counts each bucket, then (inclusive
+        // prefix sums, filled downwards) begins it.
+        let ends = |c: u32| {
+            let tri = tris[c as usize / 3];
+            let i = c as usize % 3;
+            (tri[i], tri[(i + 1) % 3])
         };
+        let edge_uses = || (0..3 * tris.len() as u32).filter(|&c| ends(c).0 != ends(c).1);
         let mut start = vec![0u32; nv + 1];
-        for (lo, _, _) in edge_uses() {
-            start[lo as usize] += 1;
+        for c in edge_uses() {
+            let (a, b) = ends(c);
+            start[a.min(b) as usize] += 1;
         }
         let mut total = 0;
         for x in start.iter_mut() {
             total += *x;
             *x = total;
         }
-        let mut uses = vec![(0u32, 0u32); total as usize];
-        for (lo, hi, corner) in edge_uses() {
-            start[lo as usize] -= 1;
-            uses[start[lo as usize] as usize] = (hi, corner);
+        let mut uses = vec![0u32; total as usize];
+        for c in edge_uses() {
+            let (a, b) = ends(c);
+            let lo = a.min(b) as usize;
+            start[lo] -= 1;
+            uses[start[lo] as usize] = c;
         }
 
         // Corner `3t+i` stands for vertex tri[i] in triangle t; fans join corners of one
@@ -143,17 +144,26 @@ impl TopologyReport {
         let mut fans = UnionFind::new(tris.len() * 3);
         let mut boundary_graph = UnionFind::new(nv);
         let mut in_boundary = vec![false; nv];
-        let mut valence = vec![0u64; nv];
+        let mut valence = vec![0u32; nv];
         let (mut edges, mut boundary_edges, mut nonmanifold_edges, mut inconsistent_edges) =
             (0u64, 0u64, 0u64, 0u64);
+        // The bucket being read, as (higher vertex, corner) sorted so that the uses of one
+        // edge are adjacent.
+        let mut bucket: Vec<(u32, u32)> = Vec::new();
         for lo in 0..nv {
-            let bucket = &mut uses[start[lo] as usize..start[lo + 1] as usize];
+            bucket.clear();
+            let corners = &uses[start[lo] as usize..start[lo + 1] as usize];
+            bucket.extend(corners.iter().map(|&c| {
+                let (a, b) = ends(c);
+                (a.max(b), c)
+            }));
             bucket.sort_unstable();
             for group in bucket.chunk_by(|a, b| a.0 == b.0) {
                 let (lo, hi) = (lo as u32, group[0].0);
                 edges += 1;
-                valence[lo as usize] += 1;
-                valence[hi as usize] += 1;
+                for x in [lo, hi] {
+                    valence[x as usize] = valence[x as usize].saturating_add(1);
+                }
                 match group.len() {
                     1 => {
                         boundary_edges += 1;
@@ -274,7 +284,7 @@ impl TopologyReport {
             oriented: edge_manifold && inconsistent_edges == 0,
             valence6_pct: 100.0 * pct(valence6),
             mean_valence: pct(2.0 * edges as f64),
-            max_valence: valence.iter().copied().max().unwrap_or(0),
+            max_valence: valence.iter().copied().max().unwrap_or(0) as u64,
         }
     }
 }

@@ -548,3 +548,33 @@ fn summarize_reads_headers_only() {
         }
     }
 }
+
+/// `encode_owned` (which frees the triangles once the corner table holds them) writes the
+/// bytes `encode` writes, with attributes (which keep them) and without, for every kind.
+#[test]
+fn encode_owned_writes_the_same_bytes() {
+    let plain = generate::irregular_torus(3000, 5);
+    let mut attributed = plain.clone();
+    let normals: Vec<[f32; 3]> = (0..plain.positions.len())
+        .map(|i| [(i % 7) as f32, 1.0, 0.5])
+        .collect();
+    attributed
+        .attributes
+        .push(Attribute::per_vertex(Semantic::Normal, &normals));
+    for mesh in [plain, attributed] {
+        for connectivity in [
+            Connectivity::Lr,
+            Connectivity::LrCompact,
+            Connectivity::Strips,
+            Connectivity::Edgebreaker,
+        ] {
+            let options = EncodeOptions {
+                connectivity,
+                ..EncodeOptions::default()
+            };
+            let want = encode(&mesh, &options).unwrap();
+            let got = lrmesh::write::encode_owned(mesh.clone(), &options).unwrap();
+            assert!(got == want, "{connectivity:?}");
+        }
+    }
+}

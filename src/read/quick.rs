@@ -4,11 +4,11 @@
 //! [`open`](super::open) reads every byte (checksums, every id in range).
 
 use super::fields::Fields;
-use super::summary::{ContainerSummary, PositionsSummary, SectionSummary};
+use super::summary::{self, ContainerSummary, PositionsSummary};
 use super::{counts, positions, Limits, Sections};
 use crate::error::{Result, Rule};
 use crate::format::layout::{LrbeHeader, LrtbHeader, StrpHeader};
-use crate::format::{Kind, PositionEncoding, Tag, HEADER_LEN};
+use crate::format::{Kind, PositionEncoding, Tag};
 
 /// The sections read by their headers alone: neither their checksums nor their data.
 const DATA: [Tag; 5] = [Tag::LRTB, Tag::LRBE, Tag::STRP, Tag::EBRK, Tag::GEOM];
@@ -48,20 +48,7 @@ pub fn summarize(bytes: &[u8], limits: &Limits) -> Result<ContainerSummary> {
             x / triangles as f64
         }
     };
-    let section_len = |tag: Tag| sections.section(tag).map_or(0, |s| s.bytes.len() as u64);
-    let connectivity_bytes = [
-        Tag::LRTB,
-        Tag::EBRK,
-        Tag::STRP,
-        Tag::LRBE,
-        Tag::COPY,
-        Tag::COPC,
-        Tag::KEPT,
-        Tag::KEPC,
-    ]
-    .map(section_len)
-    .iter()
-    .sum::<u64>();
+    let connectivity_bytes = summary::connectivity_bytes(&sections);
     let rings = rings(&sections, mesh.kind, m)?;
     let rpt = match (mesh.kind, rings) {
         (Kind::LR, Some(r)) => {
@@ -85,21 +72,9 @@ pub fn summarize(bytes: &[u8], limits: &Limits) -> Result<ContainerSummary> {
     };
     let positions = positions_summary(&sections, m)?;
     Ok(ContainerSummary {
-        version: format!("{}.{}", sections.major, sections.minor),
-        bytes: sections
-            .sections
-            .last()
-            .map_or(HEADER_LEN as u64, |s| s.offset + s.bytes.len() as u64),
-        sections: sections
-            .sections
-            .iter()
-            .map(|s| SectionSummary {
-                tag: s.tag.name(),
-                required: s.flags.is_required(),
-                offset: s.offset,
-                length: s.bytes.len() as u64,
-            })
-            .collect(),
+        version: summary::version(&sections),
+        bytes: summary::file_bytes(&sections),
+        sections: summary::section_summaries(&sections),
         connectivity: mesh.kind.name(),
         vertices: mesh.output_vertices,
         connectivity_vertices: m,
@@ -194,18 +169,15 @@ fn positions_summary(sections: &Sections, m: u32) -> Result<PositionsSummary> {
     let rule = Rule(13);
     let f = Fields::new(sections.required(Tag::GEOM)?);
     let encoding = PositionEncoding(f.u32(0, rule)?);
-    let grid_bits = || positions::grid(&f, rule).map(|g| Some(g.bits));
-    let (name, bits) = match encoding {
-        PositionEncoding::F32 => ("f32", None),
-        PositionEncoding::QUANTIZED16 => ("grid16", Some(16)),
-        PositionEncoding::PREDICTED_GRID => ("predicted-grid", grid_bits()?),
-        PositionEncoding::ANCHORED_GRID => ("anchored-grid", grid_bits()?),
-        PositionEncoding::PREDICTED_F32 => ("predicted-f32", None),
-        PositionEncoding::BLOCKED => ("blocked-grid", grid_bits()?),
-        PositionEncoding::BLOCKED_F32 => ("blocked-f32", None),
-        other => {
-            return Err(f.err(0, rule, format!("unknown position encoding {}", other.0)));
-        }
+    let Some(name) = summary::encoding_name(encoding) else {
+        return Err(f.err(0, rule, format!("unknown position encoding {}", encoding.0)));
+    };
+    let bits = match encoding {
+        PositionEncoding::QUANTIZED16 => Some(16),
+        PositionEncoding::PREDICTED_GRID
+        | PositionEncoding::ANCHORED_GRID
+        | PositionEncoding::BLOCKED => Some(positions::grid(&f, rule)?.bits),
+        _ => None,
     };
     let bytes = f.len() as u64;
     Ok(PositionsSummary {

@@ -1,6 +1,6 @@
 //! What a container holds, for reports (`lrmesh info FILE.lrm`).
 
-use super::{Connectivity, Container, Positions};
+use super::{Connectivity, Container, Positions, Sections};
 use crate::format::{Metadata, PositionEncoding, Tag, HEADER_LEN};
 use crate::lr::LrLayout;
 use crate::mesh::Semantic;
@@ -123,22 +123,78 @@ fn attribute_name(semantic: &Semantic) -> String {
     }
 }
 
+/// The sections of the connectivity (`connectivity_bytes`): its tables, copies and kept
+/// triangles.
+const CONNECTIVITY: [Tag; 8] = [
+    Tag::LRTB,
+    Tag::EBRK,
+    Tag::STRP,
+    Tag::LRBE,
+    Tag::COPY,
+    Tag::COPC,
+    Tag::KEPT,
+    Tag::KEPC,
+];
+
+/// Bytes of the connectivity's sections.
+pub(super) fn connectivity_bytes(sections: &Sections) -> u64 {
+    CONNECTIVITY
+        .iter()
+        .filter_map(|&tag| sections.section(tag))
+        .map(|s| s.bytes.len() as u64)
+        .sum()
+}
+
+/// The container version, `major.minor`.
+pub(super) fn version(sections: &Sections) -> String {
+    format!("{}.{}", sections.major, sections.minor)
+}
+
+/// The file's length, from its last section's end.
+pub(super) fn file_bytes(sections: &Sections) -> u64 {
+    sections
+        .sections
+        .last()
+        .map_or(HEADER_LEN as u64, |s| s.offset + s.bytes.len() as u64)
+}
+
+/// The section table, for reports.
+pub(super) fn section_summaries(sections: &Sections) -> Vec<SectionSummary> {
+    sections
+        .sections
+        .iter()
+        .map(|s| SectionSummary {
+            tag: s.tag.name(),
+            required: s.flags.is_required(),
+            offset: s.offset,
+            length: s.bytes.len() as u64,
+        })
+        .collect()
+}
+
+/// The name reports give position encoding `e` (`positions.encoding`), `None` when unknown.
+pub(super) fn encoding_name(e: PositionEncoding) -> Option<&'static str> {
+    Some(match e {
+        PositionEncoding::F32 => "f32",
+        PositionEncoding::QUANTIZED16 => "grid16",
+        PositionEncoding::PREDICTED_GRID => "predicted-grid",
+        PositionEncoding::ANCHORED_GRID => "anchored-grid",
+        PositionEncoding::PREDICTED_F32 => "predicted-f32",
+        PositionEncoding::BLOCKED => "blocked-grid",
+        PositionEncoding::BLOCKED_F32 => "blocked-f32",
+        _ => return None,
+    })
+}
+
 impl Container<'_> {
     fn positions_summary(&self) -> PositionsSummary {
         let stored = self.stored_positions();
         let section = self.sections.section(Tag::GEOM);
-        let anchored = section.is_some_and(|s| {
-            s.bytes.get(..4) == Some(&PositionEncoding::ANCHORED_GRID.0.to_le_bytes()[..])
-        });
-        let encoding = match stored {
-            Positions::F32(_) => "f32",
-            Positions::Quantized16 { .. } => "grid16",
-            Positions::Decoded { grid: Some(_), .. } if anchored => "anchored-grid",
-            Positions::Decoded { grid: Some(_), .. } => "predicted-grid",
-            Positions::Decoded { grid: None, .. } => "predicted-f32",
-            Positions::Blocked(b) if b.grid().is_some() => "blocked-grid",
-            Positions::Blocked(_) => "blocked-f32",
-        };
+        let encoding = section
+            .and_then(|s| s.bytes.get(..4))
+            .map(|b| PositionEncoding(u32::from_le_bytes(b.try_into().expect("four bytes"))))
+            .and_then(encoding_name)
+            .unwrap_or("f32");
         let bytes = section.map_or(0, |s| s.bytes.len() as u64);
         PositionsSummary {
             encoding,
@@ -153,19 +209,7 @@ impl Container<'_> {
 
     /// A summary of the container for reports.
     pub fn summary(&self) -> ContainerSummary {
-        let section_len = |tag: Tag| {
-            self.sections
-                .section(tag)
-                .map_or(0, |s| s.bytes.len() as u64)
-        };
-        let connectivity_bytes = section_len(Tag::LRTB)
-            + section_len(Tag::EBRK)
-            + section_len(Tag::STRP)
-            + section_len(Tag::LRBE)
-            + section_len(Tag::COPY)
-            + section_len(Tag::COPC)
-            + section_len(Tag::KEPT)
-            + section_len(Tag::KEPC);
+        let connectivity_bytes = connectivity_bytes(&self.sections);
         let triangles = self.triangles as u64 + (self.kept.count() / 3) as u64;
         let per_triangle = |x: f64| {
             if triangles == 0 {
@@ -229,23 +273,9 @@ impl Container<'_> {
             .collect();
         let attributes = attribute_details.iter().map(|a| a.name.clone()).collect();
         ContainerSummary {
-            version: format!("{}.{}", self.sections.major, self.sections.minor),
-            bytes: self
-                .sections
-                .sections
-                .last()
-                .map_or(HEADER_LEN as u64, |s| s.offset + s.bytes.len() as u64),
-            sections: self
-                .sections
-                .sections
-                .iter()
-                .map(|s| SectionSummary {
-                    tag: s.tag.name(),
-                    required: s.flags.is_required(),
-                    offset: s.offset,
-                    length: s.bytes.len() as u64,
-                })
-                .collect(),
+            version: version(&self.sections),
+            bytes: file_bytes(&self.sections),
+            sections: section_summaries(&self.sections),
             connectivity: self.connectivity.name(),
             vertices: self.output_vertices,
             connectivity_vertices: self.vertices,

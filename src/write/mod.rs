@@ -162,6 +162,30 @@ pub fn encode(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<u8>> {
     Ok(assemble(&table_sections(mesh, options)?))
 }
 
+/// Encodes `mesh` as [`encode`], taking it: when no attribute, part or kept order needs them
+/// again, its triangles are freed as soon as the corner table holds them (12 bytes per
+/// triangle off the peak of a large encode).
+///
+/// # Errors
+/// As [`encode`].
+pub fn encode_owned(mut mesh: Mesh, options: &EncodeOptions) -> Result<Vec<u8>> {
+    let needs_triangles = !mesh.attributes.is_empty()
+        || mesh.parts.is_some()
+        || options.keep_order
+        || options.orient != Orient::AsGiven;
+    if needs_triangles {
+        return encode(&mesh, options);
+    }
+    mesh.validate()?;
+    let table = CornerTable::from_mesh(&mesh)?;
+    let triangles = mesh.triangles.len();
+    mesh.triangles = Vec::new();
+    let source = Source::Table(table);
+    Ok(assemble(&sections(
+        &mesh, triangles, source, options, None,
+    )?))
+}
+
 /// Encodes `mesh` into `out` (a file, a socket, a buffer), as [`encode`].
 ///
 /// # Errors
@@ -196,9 +220,11 @@ fn table_sections(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<SectionByt
     if options.orient != Orient::AsGiven {
         return oriented_sections(&crate::mesh::orient(mesh), options);
     }
+    let table = CornerTable::from_mesh(mesh)?;
     sections(
         mesh,
-        Source::Table(CornerTable::from_mesh(mesh)?),
+        mesh.triangles.len(),
+        Source::Table(table),
         options,
         None,
     )
@@ -211,7 +237,13 @@ fn oriented_sections(oriented: &Oriented, options: &EncodeOptions) -> Result<Vec
     let record = options.orient == Orient::Repair && oriented.flipped_count() > 0;
     let flipped = record.then_some(oriented.flipped.as_slice());
     let table = CornerTable::from_mesh(mesh)?;
-    sections(mesh, Source::Table(table), options, flipped)
+    sections(
+        mesh,
+        mesh.triangles.len(),
+        Source::Table(table),
+        options,
+        flipped,
+    )
 }
 
 /// Encodes `mesh` with a connectivity already built from it (`built` must come from this
@@ -231,12 +263,9 @@ pub fn encode_built(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Resul
                 .into(),
         ));
     }
-    Ok(assemble(&sections(
-        mesh,
-        Source::Built(built),
-        options,
-        None,
-    )?))
+    let triangles = mesh.triangles.len();
+    let source = Source::Built(built);
+    Ok(assemble(&sections(mesh, triangles, source, options, None)?))
 }
 
 /// A connectivity built from a corner table for its section (one per encode: the size of the
@@ -304,6 +333,7 @@ enum Source<'a> {
 /// (per input triangle), the reversed ones in `FLIP`.
 fn sections(
     mesh: &Mesh,
+    triangles: usize,
     source: Source,
     options: &EncodeOptions,
     flipped: Option<&[bool]>,
@@ -355,12 +385,12 @@ fn sections(
         .input_vertex
         .iter()
         .any(|&v| v as usize >= mesh.positions.len())
-        || triangle_total != mesh.triangles.len()
+        || triangle_total != triangles
     {
         return Err(Error::InvalidArgument(format!(
             "the connectivity given has {triangle_total} triangles over input vertices up to {}, the mesh {} triangles and {} vertices",
             encoded.input_vertex.iter().max().map_or(0, |&v| v + 1),
-            mesh.triangles.len(),
+            triangles,
             mesh.positions.len()
         )));
     }

@@ -162,7 +162,8 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
     let started = Instant::now();
     let bytes = progress::step("encoding", || match &oriented {
         Some(o) => write::encode_oriented(o, &options),
-        None => write::encode(&mesh, &options),
+        // Taken, so that its triangles go once the corner table holds them.
+        None => write::encode_owned(mesh, &options),
     })?;
     let encode_ms = ms(started.elapsed());
     let output = &args.output;
