@@ -265,6 +265,59 @@ impl CornerTable {
     }
 }
 
+/// The uses of edges bucketed by their lower vertex with a counting sort, each use by its
+/// corner alone (4 bytes; its higher vertex is read again when its bucket is): the linear
+/// pass that matches the corner table's opposites and counts the topology report's edges.
+pub(crate) struct EdgeBuckets<F> {
+    /// Where each vertex's bucket begins in `corners`, then the end.
+    start: Vec<u32>,
+    corners: Vec<u32>,
+    /// The two vertices of the edge a corner stands for.
+    ends: F,
+}
+
+impl<F: Fn(u32) -> (u32, u32)> EdgeBuckets<F> {
+    /// Buckets corners `0..count` by the lower vertex of `ends(c)` (below `nv`), in
+    /// increasing corner order; a corner whose two ends are one vertex stands for no edge.
+    pub(crate) fn new(nv: usize, count: u32, ends: F) -> EdgeBuckets<F> {
+        let lower = |c: u32| {
+            let (a, b) = ends(c);
+            (a != b).then_some(a.min(b) as usize)
+        };
+        let mut start = vec![0u32; nv + 1];
+        for lo in (0..count).filter_map(lower) {
+            start[lo + 1] += 1;
+        }
+        for i in 0..nv {
+            start[i + 1] += start[i];
+        }
+        let mut corners = vec![0u32; start[nv] as usize];
+        let mut fill = start.clone();
+        for c in 0..count {
+            if let Some(lo) = lower(c) {
+                corners[fill[lo] as usize] = c;
+                fill[lo] += 1;
+            }
+        }
+        EdgeBuckets {
+            start,
+            corners,
+            ends,
+        }
+    }
+
+    /// The bucket of vertex `lo` as `(higher vertex, corner)` pairs, into `out`.
+    pub(crate) fn read(&self, lo: u32, out: &mut Vec<(u32, u32)>) {
+        out.clear();
+        let (begin, end) = (self.start[lo as usize], self.start[lo as usize + 1]);
+        let bucket = &self.corners[begin as usize..end as usize];
+        out.extend(bucket.iter().map(|&c| {
+            let (a, b) = (self.ends)(c);
+            (a.max(b), c)
+        }));
+    }
+}
+
 /// Pairs opposite corners across matched edges; returns `O` and the counts of cut inconsistent
 /// and cut non-manifold edges.
 ///
@@ -273,37 +326,17 @@ impl CornerTable {
 /// their higher vertex, and are reset afterwards so the whole pass stays linear.
 fn match_edges(nv: u32, v: &[u32]) -> (Vec<u32>, u32, u32) {
     let corners = v.len();
-    let mut start = vec![0u32; nv as usize + 1];
-    for c in 0..corners as u32 {
-        let (a, b) = (v[next(c) as usize], v[prev(c) as usize]);
-        start[a.min(b) as usize + 1] += 1;
-    }
-    for i in 0..nv as usize {
-        start[i + 1] += start[i];
-    }
-    // The corner of each half-edge, bucketed by lower vertex: 4 bytes per corner (the higher
-    // vertex is read again from `v` where it is needed, not stored beside it).
-    let mut bucket = vec![0u32; corners];
-    let mut fill = start.clone();
-    for c in 0..corners as u32 {
-        let (a, b) = (v[next(c) as usize], v[prev(c) as usize]);
-        let slot = &mut fill[a.min(b) as usize];
-        bucket[*slot as usize] = c;
-        *slot += 1;
-    }
-    drop(fill);
-    let higher = |c: u32| v[next(c) as usize].max(v[prev(c) as usize]);
+    let buckets = EdgeBuckets::new(nv as usize, corners as u32, |c| {
+        (v[next(c) as usize], v[prev(c) as usize])
+    });
 
     let mut o = vec![NONE; corners];
     let mut count = vec![0u32; nv as usize];
     let mut first = vec![NONE; nv as usize];
     let (mut inconsistent, mut nonmanifold) = (0u32, 0u32);
-    // The bucket being matched, with the higher vertex of each corner read once.
     let mut entries: Vec<(u32, u32)> = Vec::new();
-    for lo in 0..nv as usize {
-        entries.clear();
-        let corners = &bucket[start[lo] as usize..start[lo + 1] as usize];
-        entries.extend(corners.iter().map(|&c| (higher(c), c)));
+    for lo in 0..nv {
+        buckets.read(lo, &mut entries);
         for &(hi, c) in &entries {
             let n = &mut count[hi as usize];
             *n += 1;

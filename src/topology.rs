@@ -21,6 +21,7 @@
 
 use serde::Serialize;
 
+use crate::corner_table::EdgeBuckets;
 use crate::Mesh;
 
 /// The topology of a mesh as read. JSON keys are the field names.
@@ -111,32 +112,12 @@ impl TopologyReport {
         let referenced_count = referenced.iter().filter(|&&r| r).count() as u64;
 
         // Every use of an edge as its corner `3t+i` (the edge from corner i to corner i+1 of
-        // triangle t), bucketed by its lower vertex with a counting sort: 4 bytes per use, the
-        // higher vertex read again per bucket. `start` counts each bucket, then (inclusive
-        // prefix sums, filled downwards) begins it.
-        let ends = |c: u32| {
+        // triangle t), bucketed by its lower vertex.
+        let uses = EdgeBuckets::new(nv, 3 * tris.len() as u32, |c| {
             let tri = tris[c as usize / 3];
             let i = c as usize % 3;
             (tri[i], tri[(i + 1) % 3])
-        };
-        let edge_uses = || (0..3 * tris.len() as u32).filter(|&c| ends(c).0 != ends(c).1);
-        let mut start = vec![0u32; nv + 1];
-        for c in edge_uses() {
-            let (a, b) = ends(c);
-            start[a.min(b) as usize] += 1;
-        }
-        let mut total = 0;
-        for x in start.iter_mut() {
-            total += *x;
-            *x = total;
-        }
-        let mut uses = vec![0u32; total as usize];
-        for c in edge_uses() {
-            let (a, b) = ends(c);
-            let lo = a.min(b) as usize;
-            start[lo] -= 1;
-            uses[start[lo] as usize] = c;
-        }
+        });
 
         // Corner `3t+i` stands for vertex tri[i] in triangle t; fans join corners of one
         // vertex whose triangles share an edge at that vertex.
@@ -150,16 +131,11 @@ impl TopologyReport {
         // The bucket being read, as (higher vertex, corner) sorted so that the uses of one
         // edge are adjacent.
         let mut bucket: Vec<(u32, u32)> = Vec::new();
-        for lo in 0..nv {
-            bucket.clear();
-            let corners = &uses[start[lo] as usize..start[lo + 1] as usize];
-            bucket.extend(corners.iter().map(|&c| {
-                let (a, b) = ends(c);
-                (a.max(b), c)
-            }));
+        for lo in 0..nv as u32 {
+            uses.read(lo, &mut bucket);
             bucket.sort_unstable();
             for group in bucket.chunk_by(|a, b| a.0 == b.0) {
-                let (lo, hi) = (lo as u32, group[0].0);
+                let hi = group[0].0;
                 edges += 1;
                 for x in [lo, hi] {
                     valence[x as usize] = valence[x as usize].saturating_add(1);
@@ -193,7 +169,7 @@ impl TopologyReport {
                 }
             }
         }
-        drop((uses, start));
+        drop(uses);
 
         // Fans per vertex: count distinct fan roots among each vertex's corners.
         let mut first_root = vec![u32::MAX; nv];

@@ -63,14 +63,12 @@ impl<'a> Closed<'a> {
         let dummies = 3 * boundary.len();
         let (mut v, mut o) = (vec![NONE; dummies], vec![NONE; dummies]);
         // The boundary half-edge arriving at each vertex (one at most: one fan per vertex).
-        let mut incoming = vec![
-            NONE;
-            if dummies > 0 {
-                real_vertices as usize
-            } else {
-                0
-            }
-        ];
+        let incoming_len = if dummies > 0 {
+            real_vertices as usize
+        } else {
+            0
+        };
+        let mut incoming = vec![NONE; incoming_len];
         for &c in &boundary {
             incoming[real_v[prev3(c) as usize] as usize] = c;
         }

@@ -31,14 +31,8 @@ pub(super) fn edgebreaker_table(
             }
             other => other,
         })?;
-    if decoded.vertex_count != m {
-        // The vertex count is the first LEB128 field, after the magic and version bytes.
-        return Err(f.err(
-            2,
-            rule,
-            format!("{} vertices, section MESH says {m}", decoded.vertex_count),
-        ));
-    }
+    // The vertex count is the first LEB128 field, after the magic and version bytes.
+    f.expect_vertices(2, decoded.vertex_count, m, rule)?;
     // A stream can decode to triangles the encoder never writes; the container takes only
     // what it could have written: vertices in range, no repeated vertex in a triangle, and a
     // pseudo-manifold (one fan per vertex).

@@ -70,6 +70,14 @@ impl<'a> Fields<'a> {
         Ok(())
     }
 
+    /// The vertex count `found` at byte `at` is MESH's `m`.
+    pub fn expect_vertices(&self, at: usize, found: u32, m: u32, rule: Rule) -> Result<(), Error> {
+        if found != m {
+            return Err(self.err(at, rule, format!("{found} vertices, section MESH says {m}")));
+        }
+        Ok(())
+    }
+
     /// The exact length the section must have (`None`: the counts overflow).
     pub fn expect_len(&self, len: Option<u64>, rule: Rule) -> Result<(), Error> {
         match len {

@@ -28,13 +28,7 @@ pub(super) fn lr_tables<'a>(
     f.expect_at_least(LrtbHeader::LEN, Rule(15))?;
     let h = LrtbHeader::read(f.bytes());
     let (m_r, rings, records) = (h.m_r, h.rings, h.records);
-    if h.m != m {
-        return Err(f.err(
-            0,
-            Rule(15),
-            format!("{} vertices, section MESH says {m}", h.m),
-        ));
-    }
+    f.expect_vertices(0, h.m, m, Rule(15))?;
     if h.flags & !LR_BOUNDARIES_ON_RING != 0 {
         return Err(f.err(20, Rule(15), "unknown flag bits are set"));
     }

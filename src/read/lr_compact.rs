@@ -29,13 +29,7 @@ pub(super) fn lr_compact_tables<'a>(
     f.expect_at_least(LrbeHeader::LEN, Rule(33))?;
     let h = LrbeHeader::read(b);
     let (m_r, rings, n0, overflow_rows) = (h.m_r, h.rings, h.t0, h.overflow_rows);
-    if h.m != m {
-        return Err(f.err(
-            0,
-            Rule(33),
-            format!("{} vertices, section MESH says {m}", h.m),
-        ));
-    }
+    f.expect_vertices(0, h.m, m, Rule(33))?;
     if h.flags & !LR_BOUNDARIES_ON_RING != 0 {
         return Err(f.err(28, Rule(33), "unknown flag bits are set"));
     }

@@ -41,32 +41,20 @@ pub fn summarize(bytes: &[u8], limits: &Limits) -> Result<ContainerSummary> {
     let (mesh, _) = counts::mesh_record(&sections)?;
     let m = mesh.vertices;
     let triangles = mesh.triangles as u64 + mesh.kept as u64;
-    let per_triangle = |x: f64| {
-        if triangles == 0 {
-            0.0
-        } else {
-            x / triangles as f64
-        }
-    };
+    let per_triangle = |x: f64| summary::per_triangle(x, triangles);
     let connectivity_bytes = summary::connectivity_bytes(&sections);
     let rings = rings(&sections, mesh.kind, m)?;
     let rpt = match (mesh.kind, rings) {
         (Kind::LR, Some(r)) => {
-            let refs = 2 * r.m_r as u64
-                + 6 * r.t0 as u64
-                + 3 * r.records.unwrap_or(0) as u64
-                + (m - r.m_r) as u64;
+            let refs = summary::lr_references(m, r.m_r, r.t0, r.records.unwrap_or(0));
             Some(per_triangle(refs as f64))
         }
         (Kind::STRIPS, _) => {
             let f = header_fields(&sections, Tag::STRP, StrpHeader::LEN, Rule(28))?;
             let h = StrpHeader::read(f.bytes());
-            if h.m != m {
-                let message = format!("{} vertices, section MESH says {m}", h.m);
-                return Err(f.err(0, Rule(28), message));
-            }
+            f.expect_vertices(0, h.m, m, Rule(28))?;
             f.expect_len(h.layout().map(|l| l.len), Rule(28))?;
-            Some(per_triangle((2 * h.len as u64 + h.m as u64) as f64))
+            Some(per_triangle(summary::strips_references(h.len, h.m) as f64))
         }
         _ => None,
     };
@@ -124,22 +112,11 @@ fn header_fields<'a>(
 /// The ring figures of an LR kind's header, its vertex count and its section's length
 /// checked as the reader checks them ([V15], [V33]).
 fn rings(sections: &Sections, kind: Kind, m: u32) -> Result<Option<Rings>> {
-    let vertices = |f: &Fields, header_m: u32, rule: Rule| {
-        if header_m == m {
-            Ok(())
-        } else {
-            Err(f.err(
-                0,
-                rule,
-                format!("{header_m} vertices, section MESH says {m}"),
-            ))
-        }
-    };
     Ok(match kind {
         Kind::LR => {
             let f = header_fields(sections, Tag::LRTB, LrtbHeader::LEN, Rule(15))?;
             let h = LrtbHeader::read(f.bytes());
-            vertices(&f, h.m, Rule(15))?;
+            f.expect_vertices(0, h.m, m, Rule(15))?;
             f.expect_len(h.layout().map(|l| l.len), Rule(15))?;
             Some(Rings {
                 m_r: h.m_r,
@@ -151,7 +128,7 @@ fn rings(sections: &Sections, kind: Kind, m: u32) -> Result<Option<Rings>> {
         Kind::LR_COMPACT => {
             let f = header_fields(sections, Tag::LRBE, LrbeHeader::LEN, Rule(33))?;
             let h = LrbeHeader::read(f.bytes());
-            vertices(&f, h.m, Rule(33))?;
+            f.expect_vertices(0, h.m, m, Rule(33))?;
             f.expect_len(h.layout().map(|l| l.len), Rule(33))?;
             Some(Rings {
                 m_r: h.m_r,

@@ -35,9 +35,7 @@ pub(super) fn strips_tables<'a>(
     f.expect_at_least(StrpHeader::LEN, Rule(28))?;
     let h = StrpHeader::read(b);
     let (v, len) = (h.m, h.len);
-    if v != m {
-        return Err(f.err(0, Rule(28), format!("{v} vertices, section MESH says {m}")));
-    }
+    f.expect_vertices(0, v, m, Rule(28))?;
     if m == DELIMITER {
         return Err(f.err(
             0,

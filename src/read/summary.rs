@@ -172,6 +172,27 @@ pub(super) fn section_summaries(sections: &Sections) -> Vec<SectionSummary> {
         .collect()
 }
 
+/// `x` per triangle, 0 without triangles.
+pub(super) fn per_triangle(x: f64, triangles: u64) -> f64 {
+    if triangles == 0 {
+        0.0
+    } else {
+        x / triangles as f64
+    }
+}
+
+/// References of the LR tables of `m` vertices (`rpt`): two per ring vertex, six per T0
+/// triangle, three per irregular-triangle record, one per vertex off the rings.
+pub(super) fn lr_references(m: u32, m_r: u32, t0: u32, records: u32) -> u64 {
+    2 * m_r as u64 + 6 * t0 as u64 + 3 * records as u64 + (m - m_r) as u64
+}
+
+/// References of strips with `len` entries of `T` (and of `A`) over `m` vertices (`rpt`):
+/// `T`, `A` and `C`, one reference an entry.
+pub(super) fn strips_references(len: u32, m: u32) -> u64 {
+    2 * len as u64 + m as u64
+}
+
 /// The name reports give position encoding `e` (`positions.encoding`), `None` when unknown.
 pub(super) fn encoding_name(e: PositionEncoding) -> Option<&'static str> {
     Some(match e {
@@ -211,28 +232,19 @@ impl Container<'_> {
     pub fn summary(&self) -> ContainerSummary {
         let connectivity_bytes = connectivity_bytes(&self.sections);
         let triangles = self.triangles as u64 + (self.kept.count() / 3) as u64;
-        let per_triangle = |x: f64| {
-            if triangles == 0 {
-                0.0
-            } else {
-                x / triangles as f64
-            }
-        };
+        let per_triangle = |x: f64| per_triangle(x, triangles);
         let lr = self.lr();
         let compact = self.lr_compact();
         let rpt = match &self.connectivity {
             Connectivity::Lr(lr) => {
-                let m_r = lr.ring_vertices();
-                let refs = 2 * m_r as u64
-                    + 6 * lr.t0_count() as u64
-                    + 3 * lr.record_count() as u64
-                    + (lr.m - m_r) as u64;
+                let refs =
+                    lr_references(lr.m, lr.ring_vertices(), lr.t0_count(), lr.record_count());
                 Some(per_triangle(refs as f64))
             }
-            // T, A and C, one reference an entry.
-            Connectivity::Strips(strips) => Some(per_triangle(
-                (2 * strips.len() as u64 + strips.vertex_id_bound() as u64) as f64,
-            )),
+            Connectivity::Strips(strips) => Some(per_triangle(strips_references(
+                strips.len() as u32,
+                strips.vertex_id_bound(),
+            ) as f64)),
             Connectivity::Edgebreaker(_) | Connectivity::LrCompact(_) => None,
         };
         let attribute_details: Vec<AttributeSummary> = self

@@ -180,9 +180,12 @@ pub fn encode_owned(mut mesh: Mesh, options: &EncodeOptions) -> Result<Vec<u8>> 
     let table = CornerTable::from_mesh(&mesh)?;
     let triangles = mesh.triangles.len();
     mesh.triangles = Vec::new();
-    let source = Source::Table(table);
     Ok(assemble(&sections(
-        &mesh, triangles, source, options, None,
+        &mesh,
+        triangles,
+        Source::Table(table),
+        options,
+        None,
     )?))
 }
 
@@ -220,13 +223,23 @@ fn table_sections(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<SectionByt
     if options.orient != Orient::AsGiven {
         return oriented_sections(&crate::mesh::orient(mesh), options);
     }
+    table_sections_of(mesh, options, None)
+}
+
+/// Every section of `mesh` (validated) from the corner table built here, owned so that it
+/// is freed once the connectivity is built; `flipped` as [`sections`] takes it.
+fn table_sections_of(
+    mesh: &Mesh,
+    options: &EncodeOptions,
+    flipped: Option<&[bool]>,
+) -> Result<Vec<SectionBytes>> {
     let table = CornerTable::from_mesh(mesh)?;
     sections(
         mesh,
         mesh.triangles.len(),
         Source::Table(table),
         options,
-        None,
+        flipped,
     )
 }
 
@@ -236,14 +249,7 @@ fn oriented_sections(oriented: &Oriented, options: &EncodeOptions) -> Result<Vec
     mesh.validate()?;
     let record = options.orient == Orient::Repair && oriented.flipped_count() > 0;
     let flipped = record.then_some(oriented.flipped.as_slice());
-    let table = CornerTable::from_mesh(mesh)?;
-    sections(
-        mesh,
-        mesh.triangles.len(),
-        Source::Table(table),
-        options,
-        flipped,
-    )
+    table_sections_of(mesh, options, flipped)
 }
 
 /// Encodes `mesh` with a connectivity already built from it (`built` must come from this
@@ -344,15 +350,13 @@ fn sections(
     let edgebreaker_shape = mesh.has_per_corner_attributes()
         || mesh.parts.is_some()
         || (predicted && !mesh.attributes.is_empty());
-    let shape = edgebreaker_shape || !mesh.attributes.is_empty();
-    let section = |built: Built| {
-        let shape = match built {
-            Built::Table(_) if options.connectivity == Connectivity::Edgebreaker => {
-                edgebreaker_shape
-            }
-            _ => shape,
-        };
-        connectivity(built, options, shape, predicted)
+    // Edgebreaker is written from a corner table; every other kind from what it builds.
+    let edgebreaker = options.connectivity == Connectivity::Edgebreaker
+        && matches!(source, Source::Table(_) | Source::Built(Built::Table(_)));
+    let shape = if edgebreaker {
+        edgebreaker_shape
+    } else {
+        edgebreaker_shape || !mesh.attributes.is_empty()
     };
     let (encoded, kept) = match source {
         Source::Built(built) => {
@@ -362,7 +366,10 @@ fn sections(
                 Built::LrCompact(lr) => lr.kept_aside(),
                 Built::Strips(cts) => cts.kept_aside(),
             };
-            (section(built)?, kept.to_vec())
+            (
+                connectivity(built, options, shape, predicted)?,
+                kept.to_vec(),
+            )
         }
         Source::Table(table) => {
             let kept = table.kept_aside().to_vec();
@@ -373,7 +380,10 @@ fn sections(
                     drop(table);
                     (made_section(&made, shape), kept)
                 }
-                None => (section(Built::Table(&table))?, kept),
+                None => (
+                    connectivity::edgebreaker_section(&table, shape, predicted)?,
+                    kept,
+                ),
             }
         }
     };
