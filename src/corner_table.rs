@@ -335,7 +335,9 @@ fn match_edges(nv: u32, v: &[u32]) -> (Vec<u32>, u32, u32) {
     let mut first = vec![NONE; nv as usize];
     let (mut inconsistent, mut nonmanifold) = (0u32, 0u32);
     let mut entries: Vec<(u32, u32)> = Vec::new();
+    crate::progress::phase("corner table", nv as u64);
     for lo in 0..nv {
+        crate::progress::tick(lo as usize);
         buckets.read(lo, &mut entries);
         for &(hi, c) in &entries {
             let n = &mut count[hi as usize];

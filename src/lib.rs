@@ -55,6 +55,7 @@ pub mod io;
 pub mod lr;
 pub mod mesh;
 pub mod ops;
+pub mod progress;
 pub mod read;
 #[cfg(feature = "render")]
 pub mod render;

@@ -87,13 +87,49 @@ proptest! {
     #[test]
     fn soups(vertices in 1u32..25, triangles in 0u32..60, seed in any::<u64>(), tries in 1u32..4) {
         let mesh = generate::soup(vertices, triangles, &mut Rng::new(seed));
-        check_lr(&mesh, &LrOptions { tries, seed });
+        check_lr(&mesh, &LrOptions { tries, seed, ..LrOptions::default() });
     }
 
     #[test]
     fn tori_with_everything(around in 3u32..9, along in 3u32..9, holes in 0usize..8,
                             defects in 0usize..10, handles in 0usize..3, seed in any::<u64>()) {
         let mesh = torus_with_everything(around, along, holes, defects, handles, seed);
-        check_lr(&mesh, &LrOptions { tries: 2, seed });
+        check_lr(&mesh, &LrOptions { tries: 2, seed, ..LrOptions::default() });
     }
+}
+
+/// Several threads share the tries of a large component and the search for irregular
+/// triangles: the LR (and so every byte written from it) is the one a single thread builds.
+#[test]
+fn threads_build_the_same_lr() {
+    let mesh = generate::surface(&generate::SurfaceOptions {
+        triangles: 160_000,
+        genus: 2,
+        holes: 40,
+        components: 2,
+        irregular: true,
+        seed: 7,
+    });
+    let one = check_lr(&mesh, &LrOptions::default());
+    for threads in [2, 3] {
+        let options = LrOptions {
+            threads,
+            ..LrOptions::default()
+        };
+        let table = CornerTable::from_mesh(&mesh).unwrap();
+        assert!(
+            Lr::build(&table, &options).unwrap() == one,
+            "{threads} threads"
+        );
+    }
+    let bytes = |threads| {
+        let mut options = lrmesh::write::EncodeOptions {
+            connectivity: lrmesh::write::Connectivity::LrCompact,
+            periods: vec![0, 32],
+            ..Default::default()
+        };
+        options.lr.threads = threads;
+        lrmesh::write::encode(&mesh, &options).unwrap()
+    };
+    assert_eq!(bytes(1), bytes(2));
 }

@@ -182,7 +182,7 @@ proptest! {
     #[test]
     fn soups(vertices in 1u32..25, triangles in 0u32..60, seed in any::<u64>(), period in 0u32..4) {
         let mesh = generate::soup(vertices, triangles, &mut Rng::new(seed));
-        check_compact(&mesh, &CompactOptions { lr: LrOptions { tries: 2, seed }, periods: vec![period] });
+        check_compact(&mesh, &CompactOptions { lr: LrOptions { tries: 2, seed, ..LrOptions::default() }, periods: vec![period] });
     }
 
     #[test]
@@ -190,6 +190,6 @@ proptest! {
                             defects in 0usize..10, handles in 0usize..3, seed in any::<u64>(),
                             period in 0u32..6) {
         let mesh = torus_with_everything(around, along, holes, defects, handles, seed);
-        check_compact(&mesh, &CompactOptions { lr: LrOptions { tries: 2, seed }, periods: vec![period] });
+        check_compact(&mesh, &CompactOptions { lr: LrOptions { tries: 2, seed, ..LrOptions::default() }, periods: vec![period] });
     }
 }

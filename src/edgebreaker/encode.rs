@@ -72,6 +72,7 @@ impl Walker<'_> {
 
     fn visit(&mut self, c: u32, s: u8) -> u32 {
         let t = self.symbols.len() as u32;
+        crate::progress::tick(t as usize);
         self.visited_t[(c / 3) as usize] = true;
         self.pos_of[(c / 3) as usize] = t;
         self.entry.push(c);
@@ -170,6 +171,7 @@ pub(crate) fn plan(table: &CornerTable) -> Result<Plan> {
     let o = table.o_table();
     let nt = v.len() / 3;
     let nv = table.vertex_id_bound() as usize;
+    crate::progress::phase("edgebreaker", nt as u64);
     let mut w = Walker {
         v,
         o,

@@ -77,6 +77,7 @@ fn soup(u: &mut Unstructured) -> Result<(Mesh, EncodeOptions)> {
         lr: LrOptions {
             tries: u.int_in_range(1..=4)?,
             seed: u.arbitrary()?,
+            threads: u.int_in_range(1..=2)?,
         },
         keep_order: u.arbitrary()?,
         position_bits: match u.int_in_range(0..=31u8)? {

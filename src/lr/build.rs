@@ -3,7 +3,7 @@
 
 use super::ring::{next3, prev3, Prepared, Rings};
 use super::tables::{
-    find_boundaries_on_ring, ring_bits, LrLayout, LrTables, LEFT, NULL, RIGHT, VALUE, WART,
+    boundaries_on_ring_given, ring_bits, LrLayout, LrTables, LEFT, NULL, RIGHT, VALUE, WART,
 };
 use super::{Lr, LrCounts, LrOptions};
 use crate::corner_table::{CornerTable, NONE};
@@ -34,14 +34,19 @@ impl Lr {
     /// RING-EXPANDER (depth first) for `period = 0`.
     pub fn build_with_period(ct: &CornerTable, options: &LrOptions, period: u32) -> Result<Lr> {
         let prepared = Prepared::new(ct)?;
-        let rings = prepared.rings(period, options.tries, options.seed);
-        Lr::from_rings(ct, prepared, rings)
+        let rings = prepared.rings(period, options);
+        Lr::from_rings(ct, prepared, rings, options)
     }
 
     /// The LR of `ct` with the rings `rings` of its closed mesh `prepared`. Each working
     /// array is freed once the steps after it no longer read it, and the components first:
     /// the encoder's peak memory is here.
-    pub(super) fn from_rings(ct: &CornerTable, prepared: Prepared, rings: Rings) -> Result<Lr> {
+    pub(super) fn from_rings(
+        ct: &CornerTable,
+        prepared: Prepared,
+        rings: Rings,
+        options: &LrOptions,
+    ) -> Result<Lr> {
         let mesh = prepared.into_closed();
         let real_vertices = mesh.real_vertices;
         let Rings {
@@ -236,23 +241,34 @@ impl Lr {
             lr_struct.tables.vo_star[record + 2] = truth_o(b);
         }
         // Every other slot whose inferred opposites differ from the table's is irregular.
-        let mut irregular_without_t0 = false_redundant_count;
-        for (slot, &tip) in slot_tip_corner.iter().enumerate() {
+        // Making a slot irregular keeps its tip and flags, so no other slot's inference
+        // changes: the slots are searched in parallel chunks and recorded in order.
+        let tables = &lr_struct.tables;
+        let check = |slot: usize| {
+            let tip = slot_tip_corner[slot];
             let (v, side) = ((slot / 2) as u32, slot % 2);
-            if tip == NONE || lr_struct.tables.redundant(v, side) {
-                continue;
+            if tip == NONE || tables.redundant(v, side) {
+                return None;
             }
             let (a, b) = transversal(tip, side);
             let (ia, ib) = if side == LEFT { (0, 2) } else { (4, 6) };
-            if lr_struct.tables.opposite_raw(8 * v + ia) != truth_o(a)
-                || lr_struct.tables.opposite_raw(8 * v + ib) != truth_o(b)
-            {
-                let in_vo = |o: u32| o != NONE && o >= base;
-                if !in_vo(truth_o(a)) && !in_vo(truth_o(b)) {
-                    irregular_without_t0 += 1;
-                }
-                lr_struct.make_irregular(slot, truth_o(a), truth_o(b));
+            let (oa, ob) = (truth_o(a), truth_o(b));
+            (tables.opposite_raw(8 * v + ia) != oa || tables.opposite_raw(8 * v + ib) != ob)
+                .then_some((slot, oa, ob))
+        };
+        let slots = slot_tip_corner.len();
+        let irregular = parallel_chunks(slots, options.threads, "LR tables", |range| {
+            let start = range.start;
+            let checked = range.inspect(|&slot| crate::progress::tick(slot - start));
+            checked.filter_map(check).collect::<Vec<_>>()
+        });
+        let mut irregular_without_t0 = false_redundant_count;
+        for (slot, oa, ob) in irregular.into_iter().flatten() {
+            let in_vo = |o: u32| o != NONE && o >= base;
+            if !in_vo(oa) && !in_vo(ob) {
+                irregular_without_t0 += 1;
             }
+            lr_struct.make_irregular(slot, oa, ob);
         }
 
         drop(slot_tip_corner);
@@ -281,7 +297,11 @@ impl Lr {
             lr_struct.triangle_input[id as usize] = input;
             lr_struct.input_triangle_lr[input as usize] = id;
         }
-        lr_struct.tables.boundaries_on_ring = find_boundaries_on_ring(&lr_struct.tables);
+        // Every opposite now agrees with the table's, so the corners without one are the
+        // table's boundary corners.
+        let without_opposite = ct.o_table().iter().filter(|&&o| o == NONE).count();
+        lr_struct.tables.boundaries_on_ring =
+            boundaries_on_ring_given(&lr_struct.tables, without_opposite);
         lr_struct.counts = LrCounts {
             triangles: nt_real as u32,
             vertices: m,
@@ -294,4 +314,33 @@ impl Lr {
         };
         Ok(lr_struct)
     }
+}
+
+/// Slots per thread below which a search stays on the calling thread.
+const PARALLEL_SLOTS: usize = 1 << 16;
+
+/// `work` over `0..n` split into contiguous chunks, one per thread (up to `threads`), the
+/// results in the order of the chunks. The calling thread takes the first chunk: the phase
+/// `phase` it announces is that chunk's progress (the others run alongside).
+fn parallel_chunks<T: Send>(
+    n: usize,
+    threads: u32,
+    phase: &str,
+    work: impl Fn(std::ops::Range<usize>) -> T + Sync,
+) -> Vec<T> {
+    let chunks = (threads.max(1) as usize)
+        .min(n.div_ceil(PARALLEL_SLOTS))
+        .max(1);
+    let size = n.div_ceil(chunks);
+    crate::progress::phase(phase, size as u64);
+    let work = &work;
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = (1..chunks)
+            .map(|k| scope.spawn(move || work(k * size..n.min((k + 1) * size))))
+            .collect();
+        let first = work(0..n.min(size));
+        // A worker only panics on a broken invariant: pass it on.
+        let rest = handles.into_iter().map(|h| h.join().expect("LR worker"));
+        std::iter::once(first).chain(rest).collect()
+    })
 }

@@ -62,11 +62,19 @@ pub struct LrOptions {
     pub tries: u32,
     /// Seed of the random choice of seed corners: the same value gives the same LR.
     pub seed: u64,
+    /// Threads for the phases that run in parallel (the tries of a large component, the
+    /// search for irregular triangles); 0 and 1 use the calling thread only. The LR is the
+    /// same for any count.
+    pub threads: u32,
 }
 
 impl Default for LrOptions {
     fn default() -> Self {
-        LrOptions { tries: 4, seed: 1 }
+        LrOptions {
+            tries: 4,
+            seed: 1,
+            threads: 1,
+        }
     }
 }
 

@@ -5,7 +5,7 @@
 //! periods without closing the mesh again.
 
 use super::compact::SHORT_MAX;
-use super::NULL;
+use super::{LrOptions, NULL};
 use crate::corner_table::{CornerTable, NONE};
 use crate::error::{Error, Result};
 use crate::ops::CornerOps;
@@ -331,12 +331,12 @@ impl<'a> Prepared<'a> {
     /// The rings by RING-EXPANDER (`period` 0) or HYBRID-RING-EXPANDER of `period`: per
     /// component the best of `tries` seed corners drawn from `seed`
     /// ([`Expansion::best_of`]), walked to number its vertices.
-    pub(super) fn rings(&self, period: u32, tries: u32, seed: u64) -> Rings {
-        let mut expansion = Expansion::new(&self.mesh, period, seed);
+    pub(super) fn rings(&self, period: u32, options: &LrOptions) -> Rings {
+        let mut expansion = Expansion::new(&self.mesh, period, options.seed, options.threads);
         let mut rings = Rings::new(&self.mesh);
         for comp in &self.components {
-            expansion.best_of(comp, tries);
-            rings.walk(&self.mesh, comp, &expansion.tm);
+            expansion.best_of(comp, options.tries);
+            rings.walk(&self.mesh, comp, &expansion.main.tm);
         }
         rings
     }
@@ -350,7 +350,7 @@ impl<'a> Prepared<'a> {
     /// built sizes over the shared meshes and periods; `lr::compact` ranks periods by it.
     pub(super) fn compact_estimate(&self, period: u32, seed: u64) -> u64 {
         let mesh = &self.mesh;
-        let mut expansion = Expansion::new(mesh, period, seed);
+        let mut expansion = Expansion::new(mesh, period, seed, 1);
         let mut rings = Rings::new(mesh);
         let mut bytes = 0;
         for comp in &self.components {
@@ -358,7 +358,7 @@ impl<'a> Prepared<'a> {
             bytes += T0_BYTES * t0 as u64;
             if comp.vertices.len() as i64 > SHORT_MAX {
                 let first = rings.ring_corner.len();
-                rings.walk(mesh, comp, &expansion.tm);
+                rings.walk(mesh, comp, &expansion.main.tm);
                 bytes += LONG_PAIR_BYTES * rings.long_pairs(mesh, first);
             }
         }
@@ -371,69 +371,149 @@ const LONG_PAIR_BYTES: u64 = 10;
 /// Estimated bytes of a T0 triangle: its row and its neighbours' records.
 const T0_BYTES: u64 = 26;
 
-/// The state of the ring expansions of one period, component after component.
-struct Expansion<'m> {
-    mesh: &'m Closed<'m>,
-    period: u32,
-    rng: Rng,
+/// Components of fewer triangles than this expand their tries on one thread: a thread costs
+/// more than their expansions.
+const PARALLEL_TRIANGLES: usize = 1 << 16;
+
+/// What one ring expansion writes: visited vertices (dummies always) and invaded triangles.
+struct Scratch {
     deque: std::collections::VecDeque<u32>,
-    /// Visited vertices (dummies always) and invaded triangles.
     vm: Vec<bool>,
     tm: Vec<bool>,
 }
 
-impl<'m> Expansion<'m> {
-    fn new(mesh: &'m Closed<'m>, period: u32, seed: u64) -> Expansion<'m> {
+impl Scratch {
+    fn new(mesh: &Closed) -> Scratch {
         let mut vm = vec![false; mesh.total_vertices as usize];
         vm[mesh.real_vertices as usize..].fill(true);
-        Expansion {
-            mesh,
-            period,
-            rng: Rng::new(seed),
+        Scratch {
             deque: std::collections::VecDeque::new(),
             vm,
             tm: vec![false; mesh.triangle_count()],
         }
     }
 
-    fn expand(&mut self, comp: &Component, s: u32) {
+    fn expand(&mut self, mesh: &Closed, period: u32, comp: &Component, s: u32) {
         reset(comp, &mut self.vm, &mut self.tm);
-        if self.period == 0 {
-            ring_expander(self.mesh, s, &mut self.vm, &mut self.tm)
+        if period == 0 {
+            ring_expander(mesh, s, &mut self.vm, &mut self.tm)
         } else {
             let (vm, tm, deque) = (&mut self.vm, &mut self.tm, &mut self.deque);
-            hybrid_ring_expander(self.mesh, s, self.period, vm, tm, deque)
+            hybrid_ring_expander(mesh, s, period, vm, tm, deque)
         }
     }
 
-    /// Expands `comp` from `tries` seed corners and keeps the best (fewest isolated
-    /// vertices, then fewest T0 triangles left after wart skipping, each of which costs its
-    /// own six references and makes its neighbours irregular) in `tm`; returns its T0 count.
-    fn best_of(&mut self, comp: &Component, tries: u32) -> usize {
-        let mut best: Option<((usize, usize), u32)> = None;
-        let mut best_is_last = false;
-        for _ in 0..tries.max(1) {
-            let t = comp.real_triangles[self.rng.below(comp.real_triangles.len() as u32) as usize];
-            let s = 3 * t + self.rng.below(3);
-            self.expand(comp, s);
-            // One try needs no comparison, hence no count of isolated vertices.
-            let isolated = match tries {
-                0 | 1 => 0,
-                _ => comp
-                    .vertices
-                    .iter()
-                    .filter(|&&x| !self.vm[x as usize])
-                    .count(),
-            };
-            let t0 = t0_after_warts(self.mesh, comp, &self.tm);
-            best_is_last = best.is_none_or(|(b, _)| (isolated, t0) < b);
-            if best_is_last {
-                best = Some(((isolated, t0), s));
-            }
+    /// The expansion's cost, smaller is better: isolated vertices (counted only when there is
+    /// a choice), then T0 triangles left after wart skipping, each of which costs its own six
+    /// references and makes its neighbours irregular.
+    fn score(&self, mesh: &Closed, comp: &Component, tries: usize) -> (usize, usize) {
+        let isolated = match tries {
+            0 | 1 => 0,
+            _ => comp
+                .vertices
+                .iter()
+                .filter(|&&x| !self.vm[x as usize])
+                .count(),
+        };
+        (isolated, t0_after_warts(mesh, comp, &self.tm))
+    }
+
+    /// Takes `other`'s expansion of `comp`.
+    fn copy_component(&mut self, other: &Scratch, comp: &Component) {
+        for &x in &comp.vertices {
+            self.vm[x as usize] = other.vm[x as usize];
         }
-        let ((_, t0), s) = best.expect("at least one try");
-        if !best_is_last {
-            self.expand(comp, s);
+        for &t in &comp.triangles {
+            self.tm[t as usize] = other.tm[t as usize];
+        }
+    }
+}
+
+/// The state of the ring expansions of one period, component after component.
+struct Expansion<'m> {
+    mesh: &'m Closed<'m>,
+    period: u32,
+    rng: Rng,
+    threads: usize,
+    /// The expansion kept: the rings are walked from its `tm`.
+    main: Scratch,
+    /// One scratch per further thread, made on first use.
+    helpers: Vec<Scratch>,
+}
+
+impl<'m> Expansion<'m> {
+    fn new(mesh: &'m Closed<'m>, period: u32, seed: u64, threads: u32) -> Expansion<'m> {
+        Expansion {
+            mesh,
+            period,
+            rng: Rng::new(seed),
+            threads: threads.max(1) as usize,
+            main: Scratch::new(mesh),
+            helpers: Vec::new(),
+        }
+    }
+
+    /// Expands `comp` from `tries` seed corners and keeps the best ([`Scratch::score`]; the
+    /// first of equals) in `main`; returns its T0 count. With several threads the tries are
+    /// shared among them round robin: the seeds are drawn first, in the same order, so the
+    /// ring is the same whatever the thread count.
+    fn best_of(&mut self, comp: &Component, tries: u32) -> usize {
+        let seeds: Vec<u32> = (0..tries.max(1))
+            .map(|_| {
+                let n = comp.real_triangles.len() as u32;
+                let t = comp.real_triangles[self.rng.below(n) as usize];
+                3 * t + self.rng.below(3)
+            })
+            .collect();
+        let (mesh, period) = (self.mesh, self.period);
+        let workers = match comp.triangles.len() >= PARALLEL_TRIANGLES {
+            true => self.threads.min(seeds.len()),
+            false => 1,
+        };
+        if comp.triangles.len() >= crate::progress::TICK {
+            crate::progress::phase("rings", seeds.len() as u64);
+        }
+        while self.helpers.len() + 1 < workers {
+            self.helpers.push(Scratch::new(mesh));
+        }
+        // Worker k tries seeds k, k + workers, ...: its best (score, seed index) and whether
+        // that was its last expansion (still in its arrays).
+        let run = |k: usize, scratch: &mut Scratch| {
+            let mut best: Option<((usize, usize), usize)> = None;
+            let mut best_is_last = false;
+            for i in (k..seeds.len()).step_by(workers) {
+                // Only the calling thread (worker 0) has a reporter.
+                crate::progress::advance(i as u64);
+                scratch.expand(mesh, period, comp, seeds[i]);
+                let score = scratch.score(mesh, comp, seeds.len());
+                best_is_last = best.is_none_or(|(b, _)| score < b);
+                if best_is_last {
+                    best = Some((score, i));
+                }
+            }
+            (best.expect("a seed per worker"), best_is_last)
+        };
+        let (main, helpers) = (&mut self.main, &mut self.helpers[..workers - 1]);
+        let results: Vec<_> = std::thread::scope(|scope| {
+            let handles: Vec<_> = helpers
+                .iter_mut()
+                .enumerate()
+                .map(|(k, scratch)| scope.spawn(move || run(k + 1, scratch)))
+                .collect();
+            let mine = run(0, main);
+            // A worker only panics on a broken invariant: pass it on.
+            let theirs = handles.into_iter().map(|h| h.join().expect("ring worker"));
+            std::iter::once(mine).chain(theirs).collect()
+        });
+        let (k, &(((_, t0), i), is_last)) = results
+            .iter()
+            .enumerate()
+            .min_by_key(|(_, ((score, i), _))| (*score, *i))
+            .expect("one worker at least");
+        match (k, is_last) {
+            (0, true) => {}
+            (k, true) => self.main.copy_component(&self.helpers[k - 1], comp),
+            _ => self.main.expand(mesh, period, comp, seeds[i]),
         }
         t0
     }

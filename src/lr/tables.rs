@@ -50,19 +50,10 @@ pub struct LrTables<W> {
     pub(crate) boundaries_on_ring: bool,
 }
 
-/// Whether every corner of `tables` without an opposite is the tip corner of a left slot
-/// whose right slot has tip `NULL` (see [`LrLayout::boundaries_on_ring`]).
-pub(crate) fn find_boundaries_on_ring<T: LrLayout>(tables: &T) -> bool {
-    let without_opposite = tables
-        .triangles()
-        .flat_map(|t| tables.triangle_corners(t))
-        .filter(|&c| tables.opposite(c).is_none())
-        .count();
-    boundaries_on_ring_given(tables, without_opposite)
-}
-
-/// [`find_boundaries_on_ring`] for a caller that has already counted the corners without an
-/// opposite (a reader, while validating every opposite).
+/// Whether every corner of `tables` without an opposite (`without_opposite` of them, counted
+/// by the caller: the builder from its corner table, a reader while validating every
+/// opposite) is the tip corner of a left slot whose right slot has tip `NULL`
+/// (see [`LrLayout::boundaries_on_ring`]).
 pub(crate) fn boundaries_on_ring_given<T: LrLayout>(tables: &T, without_opposite: usize) -> bool {
     let null_right = (0..tables.ring_vertices())
         .filter(|&v| tables.tip(v, RIGHT) == NULL)

@@ -340,3 +340,22 @@ fn losses(mesh: &Mesh, format: MeshFormat) -> Vec<String> {
     }
     out
 }
+
+/// How many threads a command's parallel phases use.
+#[derive(clap::Args)]
+pub struct Threads {
+    /// Threads for the phases that run in parallel (ring tries, irregular triangles,
+    /// position blocks); the default is every core. The output is the same for any count.
+    #[arg(long, value_name = "N")]
+    threads: Option<std::num::NonZeroU32>,
+}
+
+impl Threads {
+    /// The count asked for, or the machine's available parallelism.
+    pub fn get(&self) -> u32 {
+        match self.threads {
+            Some(n) => n.get(),
+            None => std::thread::available_parallelism().map_or(1, |n| n.get() as u32),
+        }
+    }
+}

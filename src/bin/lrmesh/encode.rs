@@ -58,6 +58,8 @@ pub struct Args {
     /// Seed for the choice of seed corners (same seed, same bytes).
     #[arg(long, default_value_t = LrOptions::default().seed)]
     seed: u64,
+    #[command(flatten)]
+    threads: crate::common::Threads,
     /// Bit-efficient LR: the HYBRID-RING-EXPANDER period k to use (0: depth first)
     /// instead of trying several and keeping the smallest.
     #[arg(long)]
@@ -128,6 +130,7 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
         lr: LrOptions {
             tries: args.tries,
             seed: args.seed,
+            threads: args.threads.get(),
         },
         periods: compact_periods(args.period),
         keep_order: args.keep_order,

@@ -25,6 +25,9 @@ mod stats;
 pub struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Show no progress on stderr (it shows only when stderr is a terminal anyway).
+    #[arg(long, short, global = true)]
+    quiet: bool,
 }
 
 #[derive(Subcommand)]
@@ -58,6 +61,7 @@ enum Command {
 }
 
 fn run(cli: Cli) -> lrmesh::Result<()> {
+    progress::set_quiet(cli.quiet);
     match cli.command {
         Command::Info(args) => info::run(args),
         Command::Stats(args) => stats::run(args),

@@ -148,6 +148,7 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
                 &LrOptions {
                     tries: args.tries,
                     seed: args.seed,
+                    ..LrOptions::default()
                 },
             )
         })?;

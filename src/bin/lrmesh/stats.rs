@@ -27,6 +27,8 @@ pub struct Args {
     /// Seed for the choice of seed corners (same seed, same result).
     #[arg(long, default_value_t = LrOptions::default().seed)]
     seed: u64,
+    #[command(flatten)]
+    threads: crate::common::Threads,
     /// Bit-efficient LR: the HYBRID-RING-EXPANDER period k to use (0: depth first)
     /// instead of trying several and keeping the smallest.
     #[arg(long)]
@@ -73,6 +75,7 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
     let lr_options = LrOptions {
         tries: args.tries,
         seed: args.seed,
+        threads: args.threads.get(),
     };
     let table = progress::step("building the corner table", || {
         CornerTable::from_mesh(&mesh)

@@ -23,7 +23,9 @@ pub(crate) fn encode(positions: &[[f32; 3]], grid: Option<Grid>) -> Vec<u8> {
         })
         .collect();
     let mut best = Vec::new();
-    for levels in LEVELS_TRIED {
+    crate::progress::phase("positions", LEVELS_TRIED.len() as u64);
+    for (tried, levels) in LEVELS_TRIED.into_iter().enumerate() {
+        crate::progress::advance(tried as u64);
         let bytes = encode_with(&values, grid, levels);
         if best.is_empty() || (bytes.len() as f64) < best.len() as f64 * (1.0 - LARGER_BLOCK_GAIN) {
             best = bytes;

@@ -220,11 +220,16 @@ fn read_body<S: Source>(
     let mut poly: Vec<u32> = Vec::new();
     let mut clamped = 0u64;
 
+    let records: u64 = header.elements.iter().map(|e| e.count).sum();
+    crate::progress::phase("reading", records);
+    let mut record = 0usize;
     for e in &header.elements {
         if e.props.is_empty() {
             continue;
         }
         for r in 0..e.count {
+            crate::progress::tick(record);
+            record += 1;
             let mut pos = [0.0f32; 3];
             let mut nrm = [0.0f32; 3];
             let mut tex = [0.0f32; 2];

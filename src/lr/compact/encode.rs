@@ -29,8 +29,8 @@ impl CompactLr {
     pub fn build(ct: &CornerTable, options: &CompactOptions) -> Result<CompactLr> {
         let prepared = Prepared::new(ct)?;
         let period = choose_period(&prepared, &options.periods, options.lr.seed);
-        let rings = prepared.rings(period, options.lr.tries, options.lr.seed);
-        let lr = Lr::from_rings(ct, prepared, rings)?;
+        let rings = prepared.rings(period, &options.lr);
+        let lr = Lr::from_rings(ct, prepared, rings, &options.lr)?;
         CompactLr::encode(lr, period)
     }
 
