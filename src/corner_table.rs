@@ -110,6 +110,19 @@ impl CornerTable {
     /// [`Error::InvalidMesh`] when a triangle refers to a vertex `>= vertex_count`, or when the
     /// counts (with vertex copies) do not fit 32-bit ids.
     pub fn build(vertex_count: usize, triangles: &[[u32; 3]]) -> Result<CornerTable> {
+        CornerTable::from_triangles(vertex_count, triangles.to_vec())
+    }
+
+    /// [`CornerTable::build`] from triangles the table may keep: their vector becomes the
+    /// `V` table (the degenerate ones taken out), so that a caller that no longer needs
+    /// them holds them once, not twice.
+    ///
+    /// # Errors
+    /// As [`CornerTable::build`].
+    pub fn from_triangles(
+        vertex_count: usize,
+        mut triangles: Vec<[u32; 3]>,
+    ) -> Result<CornerTable> {
         if vertex_count >= NONE as usize || triangles.len() >= (NONE / 3) as usize {
             return Err(Error::InvalidMesh(format!(
                 "{vertex_count} vertices and {} triangles exceed the 32-bit id space",
@@ -117,28 +130,29 @@ impl CornerTable {
             )));
         }
         let nv = vertex_count as u32;
-        let mut v = Vec::with_capacity(triangles.len() * 3);
         // Filled only once a triangle is kept aside: until then triangle `t` is input `t`.
         let mut input_triangle = Vec::new();
         let mut kept_aside = Vec::new();
+        let degenerate = |tri: &[u32; 3]| tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2];
         for (t, tri) in triangles.iter().enumerate() {
             if let Some(&bad) = tri.iter().find(|&&x| x >= nv) {
                 return Err(Error::InvalidMesh(format!(
                     "triangle {t} refers to vertex {bad}, but there are {nv} vertices"
                 )));
             }
-            if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
+            if degenerate(tri) {
                 if kept_aside.is_empty() {
                     input_triangle = (0..t as u32).collect();
                 }
                 kept_aside.push((t as u32, *tri));
-            } else {
-                v.extend_from_slice(tri);
-                if !kept_aside.is_empty() {
-                    input_triangle.push(t as u32);
-                }
+            } else if !kept_aside.is_empty() {
+                input_triangle.push(t as u32);
             }
         }
+        if !kept_aside.is_empty() {
+            triangles.retain(|tri| !degenerate(tri));
+        }
+        let mut v = triangles.into_flattened();
         let (o, cut_inconsistent_edges, cut_nonmanifold_edges) = match_edges(nv, &v);
         let (c, copy_of) = split_fans(nv, &mut v, &o)?;
         let conversion = Conversion {
@@ -195,6 +209,14 @@ impl CornerTable {
     /// As [`CornerTable::build`].
     pub fn from_mesh(mesh: &crate::Mesh) -> Result<CornerTable> {
         CornerTable::build(mesh.positions.len(), &mesh.triangles)
+    }
+
+    /// Frees the `V` and `O` tables, for an owner that reads only `C` and the maps to the
+    /// input from now on (the LR builder's last step): [`CornerTable::v_table`] and
+    /// [`CornerTable::o_table`] are empty after, and no corner operator may be used.
+    pub(crate) fn free_corners(&mut self) {
+        self.v = Vec::new();
+        self.o = Vec::new();
     }
 
     /// The `V` table: the vertex of every corner.

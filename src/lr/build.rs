@@ -38,15 +38,38 @@ impl Lr {
         Lr::from_rings(ct, prepared, rings, options)
     }
 
-    /// The LR of `ct` with the rings `rings` of its closed mesh `prepared`. Each working
-    /// array is freed once the steps after it no longer read it, and the components first:
-    /// the encoder's peak memory is here.
+    /// The LR of `ct` with the rings `rings` of its closed mesh `prepared`.
     pub(super) fn from_rings(
         ct: &CornerTable,
         prepared: Prepared,
         rings: Rings,
         options: &LrOptions,
     ) -> Result<Lr> {
+        Ok(Lr::tables_from_rings(ct, prepared, rings, options)?.finish(ct))
+    }
+
+    /// The LR of `ct`, taking the table so that its `V` and `O` are freed before the maps
+    /// back to the input are made (an encoder's peak memory is there otherwise).
+    ///
+    /// # Errors
+    /// As [`Lr::build`].
+    pub(crate) fn build_owned(mut ct: CornerTable, options: &LrOptions) -> Result<Lr> {
+        let prepared = Prepared::new(&ct)?;
+        let rings = prepared.rings(0, options);
+        let partial = Lr::tables_from_rings(&ct, prepared, rings, options)?;
+        ct.free_corners();
+        Ok(partial.finish(&ct))
+    }
+
+    /// The tables of the LR of `ct` with the rings `rings` of its closed mesh `prepared`.
+    /// Each working array is freed once the steps after it no longer read it, and the
+    /// components first: the encoder's peak memory is here.
+    fn tables_from_rings(
+        ct: &CornerTable,
+        prepared: Prepared,
+        rings: Rings,
+        options: &LrOptions,
+    ) -> Result<Partial> {
         let mesh = prepared.into_closed();
         let real_vertices = mesh.real_vertices;
         let Rings {
@@ -110,6 +133,7 @@ impl Lr {
                 }
             }
         }
+        drop(ring_corner);
 
         // Warts: a T0 next to a T2 across the T2's transversal edge moves into the T2's
         // redundant slot (the slot of its first ring edge).
@@ -123,7 +147,6 @@ impl Lr {
                 t2_redundant[tip as usize / 3] = slot as u32;
             }
         }
-        let t2_redundant_slot = t2_redundant.clone();
         let mut is_t0 = vec![false; nt_real];
         let mut t0_count = 0u32;
         for t in 0..nt_real {
@@ -157,7 +180,6 @@ impl Lr {
             }
         }
 
-        drop(t2_redundant);
         // A slot whose tip merely looks like a redundant T2's (pseudo-manifold input can have
         // two triangles on the same three vertices) is made irregular, which makes it
         // canonical; its record's opposites are filled in below.
@@ -176,14 +198,14 @@ impl Lr {
             let (v, side) = ((slot / 2) as u32, slot % 2);
             if tip != NONE
                 && lr_struct.tables.redundant(v, side)
-                && t2_redundant_slot[tip as usize / 3] != slot as u32
+                && t2_redundant[tip as usize / 3] != slot as u32
             {
                 lr_struct.make_irregular(slot, NONE, NONE);
                 false_redundant.push(slot);
             }
         }
 
-        drop(t2_redundant_slot);
+        drop(t2_redundant);
         // Corner ids: canonical slots, then T0 triangles into VO.
         let t0_list: Vec<u32> = (0..nt_real as u32).filter(|&t| is_t0[t as usize]).collect();
         drop(is_t0);
@@ -272,8 +294,55 @@ impl Lr {
         }
 
         drop(slot_tip_corner);
-        // C table and the maps back to the input.
-        let m = real_vertices;
+        // Every opposite now agrees with the table's, so the corners without one are the
+        // table's boundary corners.
+        let without_opposite = ct.o_table().iter().filter(|&&o| o == NONE).count();
+        lr_struct.tables.boundaries_on_ring =
+            boundaries_on_ring_given(&lr_struct.tables, without_opposite);
+        lr_struct.counts = LrCounts {
+            triangles: nt_real as u32,
+            vertices: real_vertices,
+            ring_vertices: m_r,
+            rings: lr_struct.tables.ring_count() as u32,
+            t0: t0_count - t0_wart,
+            t0_wart,
+            irregular: lr_struct.tables.vo_star.len() as u32 / 3,
+            irregular_without_t0,
+        };
+        Ok(Partial {
+            lr: lr_struct,
+            lr_vertex,
+            triangle_lr,
+        })
+    }
+}
+
+/// An LR whose tables are done but not yet its C table and maps back to the input: all that
+/// is left to read of the corner table is its vertex copies, C and triangle order, so an
+/// owner of the table may free its `V` and `O` first ([`Lr::build_owned`]).
+pub(super) struct Partial {
+    lr: Lr,
+    /// Per table vertex, its LR id.
+    lr_vertex: Vec<u32>,
+    /// Per table triangle, its LR corners: `4·id + s` (see `from_rings`).
+    triangle_lr: Vec<u32>,
+}
+
+impl Partial {
+    /// The LR: its C table and the maps back to the input, each working array freed once
+    /// read.
+    pub(super) fn finish(self, ct: &CornerTable) -> Lr {
+        let Partial {
+            lr: mut lr_struct,
+            lr_vertex,
+            triangle_lr,
+        } = self;
+        let m = lr_struct.counts.vertices;
+        let m_r = lr_struct.counts.ring_vertices;
+        let ct_to_lr = |c: u32| match triangle_lr[c as usize / 3] {
+            NONE => NONE,
+            w => (w & !3) + (c % 3 + (w & 3)) % 3,
+        };
         lr_struct.tables.c = vec![NONE; (m - m_r) as usize];
         lr_struct.vertex_input = vec![0; m as usize];
         for x in 0..m {
@@ -289,30 +358,23 @@ impl Lr {
         for x in (0..m).rev() {
             lr_struct.input_vertex_lr[ct.original_vertex(Vertex(x)).idx()] = lr_vertex[x as usize];
         }
-        lr_struct.triangle_input = vec![NONE; 2 * m_r as usize + t0_list.len()];
-        lr_struct.input_triangle_lr = vec![NONE; nt_real + ct.kept_aside().len()];
+        drop(lr_vertex);
+        let ids = 2 * m_r as usize + lr_struct.tables.t0_count() as usize;
+        lr_struct.triangle_input = vec![NONE; ids];
         for (t, &w) in triangle_lr.iter().enumerate() {
-            let id = w / 4;
-            let input = ct.input_triangle(Triangle(t as u32));
-            lr_struct.triangle_input[id as usize] = input;
-            lr_struct.input_triangle_lr[input as usize] = id;
+            lr_struct.triangle_input[(w / 4) as usize] = ct.input_triangle(Triangle(t as u32));
         }
-        // Every opposite now agrees with the table's, so the corners without one are the
-        // table's boundary corners.
-        let without_opposite = ct.o_table().iter().filter(|&&o| o == NONE).count();
-        lr_struct.tables.boundaries_on_ring =
-            boundaries_on_ring_given(&lr_struct.tables, without_opposite);
-        lr_struct.counts = LrCounts {
-            triangles: nt_real as u32,
-            vertices: m,
-            ring_vertices: m_r,
-            rings: lr_struct.tables.ring_count() as u32,
-            t0: t0_count - t0_wart,
-            t0_wart,
-            irregular: lr_struct.tables.vo_star.len() as u32 / 3,
-            irregular_without_t0,
-        };
-        Ok(lr_struct)
+        drop(triangle_lr);
+        // The inverse of `triangle_input` (ids of redundant slots and missing right
+        // triangles hold NONE).
+        let inputs = lr_struct.counts.triangles as usize + ct.kept_aside().len();
+        lr_struct.input_triangle_lr = vec![NONE; inputs];
+        for (id, &input) in lr_struct.triangle_input.iter().enumerate() {
+            if input != NONE {
+                lr_struct.input_triangle_lr[input as usize] = id as u32;
+            }
+        }
+        lr_struct
     }
 }
 

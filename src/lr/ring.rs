@@ -211,10 +211,35 @@ fn hybrid_ring_expander(
 struct Component {
     /// Real and dummy triangles.
     triangles: Vec<u32>,
-    /// Real triangles only: the seeds are drawn from these.
-    real_triangles: Vec<u32>,
+    /// Where the dummy triangles are in `triangles`, in increasing order (few: one per
+    /// boundary edge), so that the real ones, from which the seeds are drawn, need no list
+    /// of their own.
+    dummies_at: Vec<u32>,
     /// Real vertices.
     vertices: Vec<u32>,
+}
+
+impl Component {
+    /// Real triangles in the component.
+    fn real_count(&self) -> usize {
+        self.triangles.len() - self.dummies_at.len()
+    }
+
+    /// The `r`-th real triangle of `triangles` (`r < real_count()`): it is at `r` plus the
+    /// number of dummies before it, which are the dummies `j` with at most `r` real
+    /// triangles before them (`dummies_at[j] - j`, non-decreasing in `j`).
+    fn real_triangle(&self, r: usize) -> u32 {
+        let (mut lo, mut hi) = (0, self.dummies_at.len());
+        while lo < hi {
+            let j = (lo + hi) / 2;
+            if self.dummies_at[j] as usize - j <= r {
+                lo = j + 1;
+            } else {
+                hi = j;
+            }
+        }
+        self.triangles[r + lo]
+    }
 }
 
 fn components(mesh: &Closed) -> Vec<Component> {
@@ -229,16 +254,16 @@ fn components(mesh: &Closed) -> Vec<Component> {
         }
         let mut comp = Component {
             triangles: Vec::new(),
-            real_triangles: Vec::new(),
+            dummies_at: Vec::new(),
             vertices: Vec::new(),
         };
         seen[start as usize] = true;
         stack.push(start);
         while let Some(t) = stack.pop() {
-            comp.triangles.push(t);
-            if t < mesh.real_triangles {
-                comp.real_triangles.push(t);
+            if t >= mesh.real_triangles {
+                comp.dummies_at.push(comp.triangles.len() as u32);
             }
+            comp.triangles.push(t);
             for i in 0..3 {
                 let c = 3 * t + i;
                 let x = mesh.v(c);
@@ -253,6 +278,9 @@ fn components(mesh: &Closed) -> Vec<Component> {
                 }
             }
         }
+        // Grown by doubling: up to half of each list would be slack through the expansions.
+        comp.triangles.shrink_to_fit();
+        comp.vertices.shrink_to_fit();
         out.push(comp);
     }
     out
@@ -269,10 +297,11 @@ fn ring_edges(mesh: &Closed, tm: &[bool], t: u32) -> usize {
 /// T0 triangles of a component that no wart can take: those without a T2 neighbour. (A T2 has
 /// one edge off the ring, so no two T0s compete for it, and every other T0 finds a wart.)
 fn t0_after_warts(mesh: &Closed, comp: &Component, tm: &[bool]) -> usize {
-    comp.real_triangles
+    comp.triangles
         .iter()
         .filter(|&&t| {
-            ring_edges(mesh, tm, t) == 0
+            t < mesh.real_triangles
+                && ring_edges(mesh, tm, t) == 0
                 && (0..3).all(|i| {
                     let u = mesh.o(3 * t + i) / 3;
                     u >= mesh.real_triangles || ring_edges(mesh, tm, u) != 2
@@ -334,6 +363,9 @@ impl<'a> Prepared<'a> {
     pub(super) fn rings(&self, period: u32, options: &LrOptions) -> Rings {
         let mut expansion = Expansion::new(&self.mesh, period, options.seed, options.threads);
         let mut rings = Rings::new(&self.mesh);
+        // At most one ring vertex per real vertex: no slack from growing by doubling.
+        let vertices = self.components.iter().map(|c| c.vertices.len()).sum();
+        rings.ring_corner.reserve_exact(vertices);
         for comp in &self.components {
             expansion.best_of(comp, options.tries);
             rings.walk(&self.mesh, comp, &expansion.main.tm);
@@ -460,8 +492,8 @@ impl<'m> Expansion<'m> {
     fn best_of(&mut self, comp: &Component, tries: u32) -> usize {
         let seeds: Vec<u32> = (0..tries.max(1))
             .map(|_| {
-                let n = comp.real_triangles.len() as u32;
-                let t = comp.real_triangles[self.rng.below(n) as usize];
+                let n = comp.real_count() as u32;
+                let t = comp.real_triangle(self.rng.below(n) as usize);
                 3 * t + self.rng.below(3)
             })
             .collect();

@@ -177,9 +177,10 @@ pub fn encode_owned(mut mesh: Mesh, options: &EncodeOptions) -> Result<Vec<u8>> 
         return encode(&mesh, options);
     }
     mesh.validate()?;
-    let table = CornerTable::from_mesh(&mesh)?;
-    let triangles = mesh.triangles.len();
-    mesh.triangles = Vec::new();
+    // The triangles become the table's `V`: held once, not twice.
+    let owned = std::mem::take(&mut mesh.triangles);
+    let triangles = owned.len();
+    let table = CornerTable::from_triangles(mesh.positions.len(), owned)?;
     Ok(assemble(&sections(
         &mesh,
         triangles,
@@ -373,17 +374,23 @@ fn sections(
         }
         Source::Table(table) => {
             let kept = table.kept_aside().to_vec();
-            match make(&table, options)? {
-                // The table is freed before the section is written, the built connectivity
-                // after.
-                Some(made) => {
-                    drop(table);
-                    (made_section(&made, shape), kept)
+            if options.connectivity == Connectivity::Lr {
+                // The table goes into the builder, which frees it as it goes.
+                let lr = Lr::build_owned(table, &options.lr)?;
+                (connectivity::lr_section(&lr, shape), kept)
+            } else {
+                match make(&table, options)? {
+                    // The table is freed before the section is written, the built connectivity
+                    // after.
+                    Some(made) => {
+                        drop(table);
+                        (made_section(&made, shape), kept)
+                    }
+                    None => (
+                        connectivity::edgebreaker_section(&table, shape, predicted)?,
+                        kept,
+                    ),
                 }
-                None => (
-                    connectivity::edgebreaker_section(&table, shape, predicted)?,
-                    kept,
-                ),
             }
         }
     };
