@@ -10,6 +10,8 @@ mod convert;
 mod decode;
 mod encode;
 mod generate;
+#[cfg(target_os = "linux")]
+mod huge;
 mod info;
 mod progress;
 mod render;
@@ -82,6 +84,10 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
 /// large arrays phase by phase (corner table, rings, working arrays): with the threshold fixed
 /// at glibc's default of 128 KiB they go back to the system at once, which takes 5-7% off an
 /// encode's peak resident memory at 3.3M triangles.
+#[cfg(target_os = "linux")]
+#[global_allocator]
+static ALLOCATOR: huge::HugePages = huge::HugePages;
+
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
 fn return_large_blocks_at_once() {
     // SAFETY: mallopt only sets an allocator parameter; it is called before any thread exists.
