@@ -342,7 +342,11 @@ fn code<B: Bits, D: Domain>(
     let mut values: Vec<[D::Value; 3]> = Vec::new();
     let mut scratch: Vec<D::Value> = Vec::new();
     let mut found = Vec::new();
-    crate::progress::phase("positions", plan.order().len() as u64);
+    let phase = match select {
+        true => "positions, choosing parallelograms",
+        false => "positions",
+    };
+    crate::progress::phase(phase, plan.order().len() as u64);
     for (i, &x) in plan.order().iter().enumerate() {
         crate::progress::tick(i);
         let x = x as usize;

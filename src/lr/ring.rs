@@ -149,16 +149,16 @@ impl<'a> Closed<'a> {
 
 /// RING-EXPANDER (section 4.2) from seed corner `s`: marks invaded triangles and visited
 /// vertices. Dummy vertices must already be marked visited.
-fn ring_expander(mesh: &Closed, s: u32, vm: &mut [bool], tm: &mut [bool]) {
-    vm[mesh.v(next3(s)) as usize] = true;
-    vm[mesh.v(prev3(s)) as usize] = true;
+fn ring_expander(mesh: &Closed, s: u32, vm: &mut Marks, tm: &mut Marks) {
+    vm.set(mesh.v(next3(s)) as usize);
+    vm.set(mesh.v(prev3(s)) as usize);
     let stop = mesh.o(s);
     let mut c = s;
     loop {
-        if !vm[mesh.v(c) as usize] {
-            vm[mesh.v(c) as usize] = true;
-            tm[c as usize / 3] = true;
-        } else if !tm[c as usize / 3] {
+        if !vm.get(mesh.v(c) as usize) {
+            vm.set(mesh.v(c) as usize);
+            tm.set(c as usize / 3);
+        } else if !tm.get(c as usize / 3) {
             c = mesh.o(c);
         }
         c = mesh.right(c);
@@ -177,19 +177,19 @@ fn hybrid_ring_expander(
     mesh: &Closed,
     s: u32,
     period: u32,
-    vm: &mut [bool],
-    tm: &mut [bool],
+    vm: &mut Marks,
+    tm: &mut Marks,
     deque: &mut std::collections::VecDeque<u32>,
 ) {
-    vm[mesh.v(next3(s)) as usize] = true;
-    vm[mesh.v(prev3(s)) as usize] = true;
+    vm.set(mesh.v(next3(s)) as usize);
+    vm.set(mesh.v(prev3(s)) as usize);
     deque.clear();
     let mut invaded = 0u32;
     let mut c = s;
     loop {
-        if !vm[mesh.v(c) as usize] {
-            vm[mesh.v(c) as usize] = true;
-            tm[c as usize / 3] = true;
+        if !vm.get(mesh.v(c) as usize) {
+            vm.set(mesh.v(c) as usize);
+            tm.set(c as usize / 3);
             // c.l and c.r: the corners facing the two edges the invasion exposed.
             deque.push_back(mesh.o(next3(c)));
             deque.push_back(mesh.o(prev3(c)));
@@ -287,16 +287,16 @@ fn components(mesh: &Closed) -> Vec<Component> {
 }
 
 /// Ring edges of real triangle `t`: edges to a neighbour on the other side of the ring.
-fn ring_edges(mesh: &Closed, tm: &[bool], t: u32) -> usize {
-    let inside = tm[t as usize];
+fn ring_edges(mesh: &Closed, tm: &Marks, t: u32) -> usize {
+    let inside = tm.get(t as usize);
     (0..3)
-        .filter(|&i| tm[mesh.o(3 * t + i) as usize / 3] != inside)
+        .filter(|&i| tm.get(mesh.o(3 * t + i) as usize / 3) != inside)
         .count()
 }
 
 /// T0 triangles of a component that no wart can take: those without a T2 neighbour. (A T2 has
 /// one edge off the ring, so no two T0s compete for it, and every other T0 finds a wart.)
-fn t0_after_warts(mesh: &Closed, comp: &Component, tm: &[bool]) -> usize {
+fn t0_after_warts(mesh: &Closed, comp: &Component, tm: &Marks) -> usize {
     comp.triangles
         .iter()
         .filter(|&&t| {
@@ -310,12 +310,12 @@ fn t0_after_warts(mesh: &Closed, comp: &Component, tm: &[bool]) -> usize {
         .count()
 }
 
-fn reset(comp: &Component, vm: &mut [bool], tm: &mut [bool]) {
+fn reset(comp: &Component, vm: &mut Marks, tm: &mut Marks) {
     for &x in &comp.vertices {
-        vm[x as usize] = false;
+        vm.clear(x as usize);
     }
     for &t in &comp.triangles {
-        tm[t as usize] = false;
+        tm.clear(t as usize);
     }
 }
 
@@ -403,6 +403,40 @@ const LONG_PAIR_BYTES: u64 = 10;
 /// Estimated bytes of a T0 triangle: its row and its neighbours' records.
 const T0_BYTES: u64 = 26;
 
+/// One bit per vertex or triangle: the marks of a ring expansion, eight times smaller than
+/// `bool`s, so that more of them stay in cache while the expander walks a large mesh.
+struct Marks(Vec<u64>);
+
+impl Marks {
+    fn new(n: usize) -> Marks {
+        Marks(vec![0; n.div_ceil(64)])
+    }
+
+    #[inline(always)]
+    fn get(&self, i: usize) -> bool {
+        self.0[i >> 6] >> (i & 63) & 1 != 0
+    }
+
+    #[inline(always)]
+    fn set(&mut self, i: usize) {
+        self.0[i >> 6] |= 1 << (i & 63);
+    }
+
+    #[inline(always)]
+    fn clear(&mut self, i: usize) {
+        self.0[i >> 6] &= !(1 << (i & 63));
+    }
+
+    #[inline(always)]
+    fn put(&mut self, i: usize, on: bool) {
+        if on {
+            self.set(i)
+        } else {
+            self.clear(i)
+        }
+    }
+}
+
 /// Components of fewer triangles than this expand their tries on one thread: a thread costs
 /// more than their expansions.
 const PARALLEL_TRIANGLES: usize = 1 << 16;
@@ -410,18 +444,20 @@ const PARALLEL_TRIANGLES: usize = 1 << 16;
 /// What one ring expansion writes: visited vertices (dummies always) and invaded triangles.
 struct Scratch {
     deque: std::collections::VecDeque<u32>,
-    vm: Vec<bool>,
-    tm: Vec<bool>,
+    vm: Marks,
+    tm: Marks,
 }
 
 impl Scratch {
     fn new(mesh: &Closed) -> Scratch {
-        let mut vm = vec![false; mesh.total_vertices as usize];
-        vm[mesh.real_vertices as usize..].fill(true);
+        let mut vm = Marks::new(mesh.total_vertices as usize);
+        for x in mesh.real_vertices..mesh.total_vertices {
+            vm.set(x as usize);
+        }
         Scratch {
             deque: std::collections::VecDeque::new(),
             vm,
-            tm: vec![false; mesh.triangle_count()],
+            tm: Marks::new(mesh.triangle_count()),
         }
     }
 
@@ -444,7 +480,7 @@ impl Scratch {
             _ => comp
                 .vertices
                 .iter()
-                .filter(|&&x| !self.vm[x as usize])
+                .filter(|&&x| !self.vm.get(x as usize))
                 .count(),
         };
         (isolated, t0_after_warts(mesh, comp, &self.tm))
@@ -453,10 +489,10 @@ impl Scratch {
     /// Takes `other`'s expansion of `comp`.
     fn copy_component(&mut self, other: &Scratch, comp: &Component) {
         for &x in &comp.vertices {
-            self.vm[x as usize] = other.vm[x as usize];
+            self.vm.put(x as usize, other.vm.get(x as usize));
         }
         for &t in &comp.triangles {
-            self.tm[t as usize] = other.tm[t as usize];
+            self.tm.put(t as usize, other.tm.get(t as usize));
         }
     }
 }
@@ -562,14 +598,14 @@ impl Rings {
 
     /// Walks the ring of `comp`'s invaded triangles `tm`, numbering its vertices; a ring of
     /// three adds nothing (the component stays T0 triangles and isolated vertices).
-    fn walk(&mut self, mesh: &Closed, comp: &Component, tm: &[bool]) {
+    fn walk(&mut self, mesh: &Closed, comp: &Component, tm: &Marks) {
         // A corner of an invaded triangle facing a non-invaded one starts the walk.
         let start = comp
             .triangles
             .iter()
-            .filter(|&&t| tm[t as usize])
+            .filter(|&&t| tm.get(t as usize))
             .flat_map(|&t| 3 * t..3 * t + 3)
-            .find(|&c| !tm[mesh.o(c) as usize / 3])
+            .find(|&c| !tm.get(mesh.o(c) as usize / 3))
             .expect("an invaded region has a boundary");
         let first = self.ring_corner.len();
         let mut c = start;
@@ -577,7 +613,7 @@ impl Rings {
             self.ring_corner.push(c);
             // Rotate around the far vertex through invaded triangles to the next ring edge.
             let mut k = prev3(c);
-            while tm[mesh.o(k) as usize / 3] {
+            while tm.get(mesh.o(k) as usize / 3) {
                 k = prev3(mesh.o(k));
             }
             c = k;
