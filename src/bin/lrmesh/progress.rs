@@ -61,14 +61,16 @@ struct Bar {
 
 impl lrmesh::progress::Progress for Bar {
     fn phase(&self, name: &str, total: u64) {
+        // Position and length first: the bar may be drawn between two of these calls, and
+        // must not show the new phase with the last one's position.
+        self.bar.set_position(0);
+        self.bar.set_length(total.max(1));
+        self.bar.reset_eta();
         let template = "{spinner} {msg} [{bar:24}] {percent:>3}% {elapsed} (about {eta} left)";
         if let Ok(style) = ProgressStyle::with_template(template) {
             self.bar.set_style(style.progress_chars("=> "));
         }
         self.bar.set_message(format!("{}: {name}", self.step));
-        self.bar.set_length(total.max(1));
-        self.bar.set_position(0);
-        self.bar.reset_eta();
     }
 
     fn advance(&self, done: u64) {
