@@ -196,9 +196,8 @@ impl CornerTable {
                 conversion: Conversion::default(),
             }),
             None => {
-                let triangles: Vec<[u32; 3]> =
-                    v.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
-                CornerTable::build(vertex_count as usize, &triangles)
+                let triangles = v.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
+                CornerTable::from_triangles(vertex_count as usize, triangles)
             }
         }
     }

@@ -233,12 +233,7 @@ fn quantized_positions_are_within_half_a_step() {
     let mesh = read_mesh(&corpus_dir().join("fandisk.off"), &ReadOptions::default())
         .unwrap()
         .mesh;
-    for connectivity in [
-        Connectivity::Lr,
-        Connectivity::Edgebreaker,
-        Connectivity::Strips,
-        Connectivity::LrCompact,
-    ] {
+    for connectivity in Connectivity::ALL {
         for bits in [1, 8, 11, 16, 23, 30] {
             for level in [0, 6] {
                 let options = EncodeOptions {
@@ -511,12 +506,7 @@ fn duplicate_positions_round_trip_up_to_rotation() {
 fn summarize_reads_headers_only() {
     let limits = Limits::default();
     let mesh = generate::irregular_torus(4000, 3);
-    for connectivity in [
-        Connectivity::Lr,
-        Connectivity::LrCompact,
-        Connectivity::Strips,
-        Connectivity::Edgebreaker,
-    ] {
+    for connectivity in Connectivity::ALL {
         let options = EncodeOptions {
             connectivity,
             ..EncodeOptions::default()
@@ -562,12 +552,7 @@ fn encode_owned_writes_the_same_bytes() {
         .attributes
         .push(Attribute::per_vertex(Semantic::Normal, &normals));
     for mesh in [plain, attributed] {
-        for connectivity in [
-            Connectivity::Lr,
-            Connectivity::LrCompact,
-            Connectivity::Strips,
-            Connectivity::Edgebreaker,
-        ] {
+        for connectivity in Connectivity::ALL {
             let options = EncodeOptions {
                 connectivity,
                 ..EncodeOptions::default()

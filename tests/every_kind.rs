@@ -14,13 +14,6 @@ use lrmesh::ops::CornerOps;
 use lrmesh::write::{encode, Connectivity, EncodeOptions};
 use lrmesh::{generate, CornerTable, Mesh, Vertex};
 
-const KINDS: [Connectivity; 4] = [
-    Connectivity::Lr,
-    Connectivity::LrCompact,
-    Connectivity::Strips,
-    Connectivity::Edgebreaker,
-];
-
 /// The corners met swinging from `v.c` with `c.s` alone, stopping at a boundary or back at
 /// the start.
 fn swing_only<M: CornerOps>(m: &M, v: Vertex) -> Vec<lrmesh::Corner> {
@@ -85,7 +78,7 @@ fn check_every_kind(mesh: &Mesh, name: &str) {
     let normals = mesh.vertex_values::<3>(&Semantic::Normal);
     let texcoords = mesh.vertex_values::<2>(&Semantic::TexCoord(0));
     let colors = mesh.vertex_colors_rgba8();
-    for kind in KINDS {
+    for kind in Connectivity::ALL {
         let options = EncodeOptions {
             connectivity: kind,
             keep_order: true,

@@ -82,12 +82,7 @@ fn v12_mesh_counts() {
     breaks(&bad, 12, "MESH", at_copies + 12, "KEPT");
     breaks(&mesh_field(&tetra, 12, 1), 12, "MESH", at + 12, "KEPT");
     // N, for every kind (for EBRK, [V27] says the same).
-    for connectivity in [
-        Connectivity::Lr,
-        Connectivity::Edgebreaker,
-        Connectivity::Strips,
-        Connectivity::LrCompact,
-    ] {
+    for connectivity in Connectivity::ALL {
         let bytes = encoded(&torus(), connectivity);
         let at = section_at(&bytes, Tag::MESH);
         for n in [39, 41, 0] {

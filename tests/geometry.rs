@@ -11,13 +11,6 @@ use lrmesh::write::{encode, Connectivity, EncodeOptions};
 use lrmesh::Mesh;
 use proptest::prelude::*;
 
-const KINDS: [Connectivity; 4] = [
-    Connectivity::Lr,
-    Connectivity::Edgebreaker,
-    Connectivity::Strips,
-    Connectivity::LrCompact,
-];
-
 /// Encodes with the input order kept and returns the decoded positions.
 fn round_trip(
     mesh: &Mesh,
@@ -79,7 +72,7 @@ fn lossless_positions_come_back_bit_for_bit_even_hostile_ones() {
     for seed in 0..6 {
         let mut mesh = torus_with_everything(7, 5, 2, 4, 1, seed);
         mesh.positions = hostile_positions(mesh.positions.len(), &mut rng);
-        for kind in KINDS {
+        for kind in Connectivity::ALL {
             for level in [0, 6, 9] {
                 let got = round_trip(&mesh, kind, None, level);
                 assert_exact(&got, &mesh.positions, &format!("{kind:?} level {level}"));
@@ -98,7 +91,7 @@ fn real_meshes_round_trip_in_every_kind() {
         "polygon_mesh.off",
     ] {
         let mesh = lrmesh::load(corpus_dir().join(name)).unwrap();
-        for kind in KINDS {
+        for kind in Connectivity::ALL {
             let got = round_trip(&mesh, kind, None, 6);
             assert_exact(&got, &mesh.positions, name);
             for (bits, level) in [(11, 6), (14, 6), (16, 6), (11, 1), (16, 2)] {
@@ -166,7 +159,7 @@ proptest! {
                                    kind in 0usize..4, jitter in 0u32..3) {
         let mut mesh = torus_with_everything(around, along, holes, defects, handles, seed);
         generate::jitter(&mut mesh, jitter as f32 * 0.05, &mut Rng::new(seed));
-        let got = round_trip(&mesh, KINDS[kind], bits, level);
+        let got = round_trip(&mesh, Connectivity::ALL[kind], bits, level);
         match bits {
             None => assert_exact(&got, &mesh.positions, "exact"),
             Some(b) => {
@@ -180,7 +173,7 @@ proptest! {
                         bits in prop::option::of(1u8..=30), kind in 0usize..4,
                         level in prop::sample::select(vec![1u8, 6])) {
         let mesh = generate::soup(vertices, triangles, &mut Rng::new(seed));
-        let got = round_trip(&mesh, KINDS[kind], bits, level);
+        let got = round_trip(&mesh, Connectivity::ALL[kind], bits, level);
         match bits {
             None => assert_exact(&got, &mesh.positions, "exact"),
             Some(b) => {

@@ -169,12 +169,7 @@ fn smallest_sections_in_every_kind() {
     use lrmesh::write::Connectivity;
     let lonely = Mesh::new(vec![[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]], Vec::new());
     for mesh in [Mesh::default(), lonely] {
-        for connectivity in [
-            Connectivity::Lr,
-            Connectivity::LrCompact,
-            Connectivity::Strips,
-            Connectivity::Edgebreaker,
-        ] {
+        for connectivity in Connectivity::ALL {
             let options = EncodeOptions {
                 connectivity,
                 keep_order: true,

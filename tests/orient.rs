@@ -14,13 +14,6 @@ use lrmesh::read::{open_verified, Limits, Sections};
 use lrmesh::write::{encode, Connectivity, EncodeOptions, Orient};
 use lrmesh::{CornerTable, Mesh};
 
-const KINDS: [Connectivity; 4] = [
-    Connectivity::Lr,
-    Connectivity::Edgebreaker,
-    Connectivity::Strips,
-    Connectivity::LrCompact,
-];
-
 fn shuffled() -> Mesh {
     let path = corpus_dir().join("blobby-shuffled.off");
     read_mesh(&path, &ReadOptions::default()).unwrap().mesh
@@ -98,7 +91,7 @@ fn decoding_gives_back_the_input_or_the_repaired_triangles() {
     let mesh = shuffled();
     let repaired = orient(&mesh).mesh;
     let limits = Limits::default();
-    for connectivity in KINDS {
+    for connectivity in Connectivity::ALL {
         let plain = encode(&mesh, &options(connectivity, false, Orient::AsGiven)).unwrap();
         for keep_order in [true, false] {
             let what = format!("{connectivity:?}, keep order {keep_order}");
@@ -142,7 +135,7 @@ fn per_corner_values_come_back_at_their_corners() {
         values: Values::U32((0..3 * n as u32).collect()),
         corners: Some((0..3 * n as u32).collect()),
     });
-    for connectivity in KINDS {
+    for connectivity in Connectivity::ALL {
         let bytes = encode(&mesh, &options(connectivity, true, Orient::Repair)).unwrap();
         let back = open_verified(&bytes, &Limits::default()).unwrap().to_mesh();
         let a = &back.attributes[0];

@@ -206,12 +206,7 @@ fn base_sections(choice: u8) -> Vec<crate::write::SectionBytes> {
 /// positions in `GEOM` encoding 6), 7 seams and parts (with JSON labels at level 0 on the
 /// smallest torus without holes, else coded).
 pub fn forged_base(choice: u8) -> Vec<u8> {
-    let kind = [
-        Connectivity::Lr,
-        Connectivity::LrCompact,
-        Connectivity::Strips,
-        Connectivity::Edgebreaker,
-    ][(choice & 3) as usize];
+    let kind = Connectivity::ALL[(choice & 3) as usize];
     let mut mesh = generate::torus(3 + (choice >> 2 & 3) as u32, 4);
     if choice & 0x10 != 0 {
         let mut rng = generate::Rng::new(choice as u64);

@@ -37,6 +37,16 @@ pub enum Connectivity {
     LrCompact,
 }
 
+impl Connectivity {
+    /// Every kind, for a caller that tries them all.
+    pub const ALL: [Connectivity; 4] = [
+        Connectivity::Lr,
+        Connectivity::LrCompact,
+        Connectivity::Strips,
+        Connectivity::Edgebreaker,
+    ];
+}
+
 /// Whether the writer makes the triangles' orientation consistent first (`lrmesh encode
 /// --orient`): an edge two triangles use in the same direction cuts the surface there, so
 /// a mesh with mixed orientations costs every representation more.
@@ -374,24 +384,18 @@ fn sections(
         }
         Source::Table(table) => {
             let kept = table.kept_aside().to_vec();
-            if options.connectivity == Connectivity::Lr {
+            let encoded = if options.connectivity == Connectivity::Lr {
                 // The table goes into the builder, which frees it as it goes.
-                let lr = Lr::build_owned(table, &options.lr)?;
-                (connectivity::lr_section(&lr, shape), kept)
+                connectivity::lr_section(&Lr::build_owned(table, &options.lr)?, shape)
+            } else if let Some(made) = make(&table, options)? {
+                // The table is freed before the section is written, the built connectivity
+                // after.
+                drop(table);
+                made_section(&made, shape)
             } else {
-                match make(&table, options)? {
-                    // The table is freed before the section is written, the built connectivity
-                    // after.
-                    Some(made) => {
-                        drop(table);
-                        (made_section(&made, shape), kept)
-                    }
-                    None => (
-                        connectivity::edgebreaker_section(&table, shape, predicted)?,
-                        kept,
-                    ),
-                }
-            }
+                connectivity::edgebreaker_section(&table, shape, predicted)?
+            };
+            (encoded, kept)
         }
     };
     let kept = kept.as_slice();
