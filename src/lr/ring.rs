@@ -278,12 +278,54 @@ fn components(mesh: &Closed) -> Vec<Component> {
                 }
             }
         }
+        if comp.triangles.len() >= ASCENDING_TRIANGLES {
+            ascending(&mut comp.triangles);
+            ascending(&mut comp.vertices);
+            // The dummy triangles, numbered after the real ones, are now last.
+            let real = comp.triangles.partition_point(|&t| t < mesh.real_triangles);
+            let dummies = comp.dummies_at.len() as u32;
+            comp.dummies_at = (real as u32..real as u32 + dummies).collect();
+        }
         // Grown by doubling: up to half of each list would be slack through the expansions.
         comp.triangles.shrink_to_fit();
         comp.vertices.shrink_to_fit();
         out.push(comp);
     }
     out
+}
+
+/// Components of at least this many triangles keep their lists in increasing order: every
+/// pass over a component (resetting its marks, scoring a try, copying the best) then reads
+/// the tables and the marks in order instead of in the order of the search, which on a large
+/// mesh is a cache miss per triangle. Smaller components keep the search order (their
+/// passes stay in cache either way), and so the seed corners and rings they always had.
+const ASCENDING_TRIANGLES: usize = 1 << 16;
+
+/// Puts distinct `ids` in increasing order in linear time: through a bit set over their range
+/// when it is at most 64 times as long as the list (a component's ids usually are: a mesh
+/// lists neighbours near one another), by sorting otherwise.
+fn ascending(ids: &mut [u32]) {
+    let (Some(&lo), Some(&hi)) = (ids.iter().min(), ids.iter().max()) else {
+        return;
+    };
+    let range = (hi - lo) as usize + 1;
+    if range / 64 > ids.len() {
+        ids.sort_unstable();
+        return;
+    }
+    let mut marks = Marks::new(range);
+    for &x in ids.iter() {
+        marks.set((x - lo) as usize);
+    }
+    let mut k = 0;
+    for (w, &word) in marks.0.iter().enumerate() {
+        let mut bits = word;
+        while bits != 0 {
+            ids[k] = lo + 64 * w as u32 + bits.trailing_zeros();
+            k += 1;
+            bits &= bits - 1;
+        }
+    }
 }
 
 /// Ring edges of real triangle `t`: edges to a neighbour on the other side of the ring.
@@ -505,8 +547,11 @@ struct Expansion<'m> {
     threads: usize,
     /// The expansion kept: the rings are walked from its `tm`.
     main: Scratch,
-    /// One scratch per further thread, made on first use.
-    helpers: Vec<Scratch>,
+    /// Per thread, a scratch for its tries and one for its best so far (thread 0's best is
+    /// `main`): a try that does better is swapped in, so the best is never expanded twice.
+    /// Made on first use.
+    trying: Vec<Scratch>,
+    bests: Vec<Scratch>,
 }
 
 impl<'m> Expansion<'m> {
@@ -517,7 +562,8 @@ impl<'m> Expansion<'m> {
             rng: Rng::new(seed),
             threads: threads.max(1) as usize,
             main: Scratch::new(mesh),
-            helpers: Vec::new(),
+            trying: Vec::new(),
+            bests: Vec::new(),
         }
     }
 
@@ -541,47 +587,50 @@ impl<'m> Expansion<'m> {
         if comp.triangles.len() >= crate::progress::TICK {
             crate::progress::phase("rings", seeds.len() as u64);
         }
-        while self.helpers.len() + 1 < workers {
-            self.helpers.push(Scratch::new(mesh));
+        while self.trying.len() < workers {
+            self.trying.push(Scratch::new(mesh));
         }
-        // Worker k tries seeds k, k + workers, ...: its best (score, seed index) and whether
-        // that was its last expansion (still in its arrays).
-        let run = |k: usize, scratch: &mut Scratch| {
-            let mut best: Option<((usize, usize), usize)> = None;
-            let mut best_is_last = false;
+        while self.bests.len() + 1 < workers {
+            self.bests.push(Scratch::new(mesh));
+        }
+        // Worker k tries seeds k, k + workers, ... in `scratch` and swaps each better one
+        // into `best`: returns its best (score, seed index).
+        let run = |k: usize, scratch: &mut Scratch, best: &mut Scratch| {
+            let mut kept: Option<((usize, usize), usize)> = None;
             for i in (k..seeds.len()).step_by(workers) {
                 // Only the calling thread (worker 0) has a reporter.
                 crate::progress::advance(i as u64);
                 scratch.expand(mesh, period, comp, seeds[i]);
                 let score = scratch.score(mesh, comp, seeds.len());
-                best_is_last = best.is_none_or(|(b, _)| score < b);
-                if best_is_last {
-                    best = Some((score, i));
+                if kept.is_none_or(|(b, _)| score < b) {
+                    kept = Some((score, i));
+                    std::mem::swap(scratch, best);
                 }
             }
-            (best.expect("a seed per worker"), best_is_last)
+            kept.expect("a seed per worker")
         };
-        let (main, helpers) = (&mut self.main, &mut self.helpers[..workers - 1]);
+        let (trying, bests) = (&mut self.trying[..workers], &mut self.bests[..workers - 1]);
+        let (mine, theirs) = trying.split_first_mut().expect("one worker at least");
+        let main = &mut self.main;
         let results: Vec<_> = std::thread::scope(|scope| {
-            let handles: Vec<_> = helpers
+            let handles: Vec<_> = theirs
                 .iter_mut()
+                .zip(bests.iter_mut())
                 .enumerate()
-                .map(|(k, scratch)| scope.spawn(move || run(k + 1, scratch)))
+                .map(|(k, (scratch, best))| scope.spawn(move || run(k + 1, scratch, best)))
                 .collect();
-            let mine = run(0, main);
+            let first = run(0, mine, main);
             // A worker only panics on a broken invariant: pass it on.
-            let theirs = handles.into_iter().map(|h| h.join().expect("ring worker"));
-            std::iter::once(mine).chain(theirs).collect()
+            let others = handles.into_iter().map(|h| h.join().expect("ring worker"));
+            std::iter::once(first).chain(others).collect()
         });
-        let (k, &(((_, t0), i), is_last)) = results
+        let (k, &((_, t0), _)) = results
             .iter()
             .enumerate()
-            .min_by_key(|(_, ((score, i), _))| (*score, *i))
+            .min_by_key(|(_, (score, i))| (*score, *i))
             .expect("one worker at least");
-        match (k, is_last) {
-            (0, true) => {}
-            (k, true) => self.main.copy_component(&self.helpers[k - 1], comp),
-            _ => self.main.expand(mesh, period, comp, seeds[i]),
+        if k > 0 {
+            self.main.copy_component(&self.bests[k - 1], comp);
         }
         t0
     }
@@ -647,5 +696,28 @@ impl Rings {
         corners
             .filter(|&(v, &c)| far(v, mesh.v(c)) || far(v, mesh.v(mesh.o(c))))
             .count() as u64
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Dense ids go through the bit set, sparse ones through the sort: both sort.
+    #[test]
+    fn ascending_sorts_dense_and_sparse_ids() {
+        let mut rng = Rng::new(7);
+        for (count, range) in [(0, 1), (1, 1), (1000, 1500), (1000, 64_000), (1000, 1 << 30)] {
+            let mut ids: Vec<u32> = (0..count).map(|_| rng.below(range)).collect();
+            ids.sort_unstable();
+            ids.dedup();
+            let expected = ids.clone();
+            // Shuffled, as a search lists them.
+            for i in (1..ids.len()).rev() {
+                ids.swap(i, rng.below(i as u32 + 1) as usize);
+            }
+            ascending(&mut ids);
+            assert_eq!(ids, expected, "{count} ids below {range}");
+        }
     }
 }
