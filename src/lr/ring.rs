@@ -707,7 +707,13 @@ mod tests {
     #[test]
     fn ascending_sorts_dense_and_sparse_ids() {
         let mut rng = Rng::new(7);
-        for (count, range) in [(0, 1), (1, 1), (1000, 1500), (1000, 64_000), (1000, 1 << 30)] {
+        for (count, range) in [
+            (0, 1),
+            (1, 1),
+            (1000, 1500),
+            (1000, 64_000),
+            (1000, 1 << 30),
+        ] {
             let mut ids: Vec<u32> = (0..count).map(|_| rng.below(range)).collect();
             ids.sort_unstable();
             ids.dedup();
