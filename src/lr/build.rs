@@ -1,7 +1,8 @@
 //! Construction of the LR from a corner table: closing boundaries with dummy vertices,
 //! RING-EXPANDER per component, triangle classes, warts, and irregular records.
 
-use super::ring::{next3, prev3, Prepared, Rings};
+use super::closed::{next3, prev3};
+use super::ring::{Prepared, Rings};
 use super::tables::{
     boundaries_on_ring_given, ring_bits, LrLayout, LrTables, LEFT, NULL, RIGHT, VALUE, WART,
 };

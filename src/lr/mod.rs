@@ -42,6 +42,7 @@
 //! [`CompactTables`] of section 6 ([`compact`]), built by [`CompactLr`].
 
 mod build;
+mod closed;
 pub mod compact;
 mod ring;
 mod tables;

@@ -1,151 +1,15 @@
-//! The rings of an LR construction: the corner table closed by dummy vertices over its
-//! boundaries, RING-EXPANDER (or HYBRID-RING-EXPANDER) per component from the best of
+//! The rings of an LR construction: on the corner table closed over its boundaries
+//! ([`Closed`]), RING-EXPANDER (or HYBRID-RING-EXPANDER) per component from the best of
 //! several seed corners, and the walk that numbers the ring vertices. [`Prepared`] holds
 //! what every ring of one corner table shares, so that the bit-efficient LR can compare
 //! periods without closing the mesh again.
 
+use super::closed::{next3, prev3, Closed};
 use super::compact::SHORT_MAX;
 use super::{LrOptions, NULL};
 use crate::corner_table::{CornerTable, NONE};
 use crate::error::{Error, Result};
-use crate::ops::CornerOps;
 use crate::rng::Rng;
-
-/// The corner table closed by dummy vertices and triangles over each boundary loop. The
-/// table's `V` and `O` are borrowed, not copied (they are most of an encode's memory): the
-/// dummy triangles live in arrays of their own, and a boundary corner's opposite (`NONE` in
-/// the table) is found by its rank among the boundary corners.
-pub(super) struct Closed<'a> {
-    real_v: &'a [u32],
-    real_o: &'a [u32],
-    /// `V` and `O` of the dummy triangles, from corner `3 · real_triangles` on.
-    dummy_v: Vec<u32>,
-    dummy_o: Vec<u32>,
-    /// The boundary corners in increasing order: the `k`-th faces corner 2 of dummy
-    /// triangle `real_triangles + k`.
-    boundary: Vec<u32>,
-    pub(super) real_triangles: u32,
-    pub(super) real_vertices: u32,
-    /// Real and dummy vertices.
-    total_vertices: u32,
-}
-
-pub(super) fn next3(c: u32) -> u32 {
-    if c % 3 == 2 {
-        c - 2
-    } else {
-        c + 1
-    }
-}
-
-pub(super) fn prev3(c: u32) -> u32 {
-    if c % 3 == 0 {
-        c + 2
-    } else {
-        c - 1
-    }
-}
-
-impl<'a> Closed<'a> {
-    /// Adds, for every boundary half-edge `a -> b` (facing corner `c`), a dummy triangle
-    /// `(b, a, d)` where `d` is the dummy vertex of that boundary loop.
-    fn new(ct: &'a CornerTable) -> Result<Closed<'a>> {
-        let (real_v, real_o) = (ct.v_table(), ct.o_table());
-        let real_triangles = (real_v.len() / 3) as u32;
-        let real_vertices = ct.vertex_id_bound();
-        let boundary: Vec<u32> = (0..real_v.len() as u32)
-            .filter(|&c| real_o[c as usize] == NONE)
-            .collect();
-        let total = real_v.len() + 3 * boundary.len();
-        if total >= (NONE / 2) as usize {
-            return Err(Error::Unsupported("mesh too large for LR".into()));
-        }
-        let dummies = 3 * boundary.len();
-        let (mut v, mut o) = (vec![NONE; dummies], vec![NONE; dummies]);
-        // The boundary half-edge arriving at each vertex (one at most: one fan per vertex).
-        let incoming_len = if dummies > 0 {
-            real_vertices as usize
-        } else {
-            0
-        };
-        let mut incoming = vec![NONE; incoming_len];
-        for &c in &boundary {
-            incoming[real_v[prev3(c) as usize] as usize] = c;
-        }
-        // Dummy triangle k (of boundary corner k), at 3k in the dummy arrays.
-        let rank = |c: u32| boundary.binary_search(&c).expect("a boundary corner");
-        let base_corner = 3 * real_triangles;
-        for (k, &c) in boundary.iter().enumerate() {
-            let (a, b) = (real_v[next3(c) as usize], real_v[prev3(c) as usize]);
-            let base = 3 * k;
-            v[base] = b;
-            v[base + 1] = a;
-            o[base + 2] = c;
-            // Corner 0 (at b) faces a -> d: the dummy of the boundary half-edge into a.
-            let before = rank(incoming[a as usize]);
-            o[base] = base_corner + 3 * before as u32 + 1;
-            o[3 * before + 1] = base_corner + base as u32;
-        }
-        drop(incoming);
-        // One dummy vertex per loop: walk the loop through the corner-0/corner-1 links.
-        let mut next_dummy_vertex = real_vertices;
-        for k in 0..boundary.len() {
-            if v[3 * k + 2] != NONE {
-                continue;
-            }
-            let d = next_dummy_vertex;
-            next_dummy_vertex += 1;
-            let mut u = k;
-            while v[3 * u + 2] == NONE {
-                v[3 * u + 2] = d;
-                u = (o[3 * u] - base_corner) as usize / 3;
-            }
-        }
-        Ok(Closed {
-            real_v,
-            real_o,
-            dummy_v: v,
-            dummy_o: o,
-            boundary,
-            real_triangles,
-            real_vertices,
-            total_vertices: next_dummy_vertex,
-        })
-    }
-
-    /// Real and dummy triangles.
-    pub(super) fn triangle_count(&self) -> usize {
-        (self.real_v.len() + self.dummy_v.len()) / 3
-    }
-
-    /// The vertex of corner `c`.
-    #[inline(always)]
-    pub(super) fn v(&self, c: u32) -> u32 {
-        let c = c as usize;
-        match self.real_v.get(c) {
-            Some(&x) => x,
-            None => self.dummy_v[c - self.real_v.len()],
-        }
-    }
-
-    /// The opposite of corner `c` (never `NONE`: the mesh is closed).
-    #[inline(always)]
-    pub(super) fn o(&self, c: u32) -> u32 {
-        match self.real_o.get(c as usize) {
-            Some(&NONE) => {
-                let k = self.boundary.binary_search(&c).expect("a boundary corner");
-                3 * (self.real_triangles + k as u32) + 2
-            }
-            Some(&d) => d,
-            None => self.dummy_o[c as usize - self.real_o.len()],
-        }
-    }
-
-    #[inline]
-    fn right(&self, c: u32) -> u32 {
-        self.o(prev3(c))
-    }
-}
 
 /// RING-EXPANDER (section 4.2) from seed corner `s`: marks invaded triangles and visited
 /// vertices. Dummy vertices must already be marked visited.
@@ -282,9 +146,8 @@ fn components(mesh: &Closed) -> Vec<Component> {
             ascending(&mut comp.triangles);
             ascending(&mut comp.vertices);
             // The dummy triangles, numbered after the real ones, are now last.
-            let real = comp.triangles.partition_point(|&t| t < mesh.real_triangles);
-            let dummies = comp.dummies_at.len() as u32;
-            comp.dummies_at = (real as u32..real as u32 + dummies).collect();
+            let (real, all) = (comp.real_count() as u32, comp.triangles.len() as u32);
+            comp.dummies_at = (real..all).collect();
         }
         // Grown by doubling: up to half of each list would be slack through the expansions.
         comp.triangles.shrink_to_fit();
