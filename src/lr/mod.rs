@@ -46,10 +46,12 @@ mod closed;
 pub mod compact;
 mod ring;
 mod tables;
+pub mod zipper;
 
 pub use compact::{CompactLr, CompactOptions, CompactStats, CompactTables};
 pub(crate) use tables::{boundaries_on_ring_given, ring_bits};
 pub use tables::{LrLayout, LrTables, IRREGULAR, NULL, VALUE, WART};
+pub use zipper::{Zipper, ZipperStats, ZipperTables};
 
 use crate::corner_table::NONE;
 use crate::ids::{Corner, Triangle, Vertex};

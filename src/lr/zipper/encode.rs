@@ -1,0 +1,203 @@
+//! Construction of the Zipper tables from a standard LR: each slot's symbol is chosen the
+//! way the decoder reads it back, then every slot and T0 opposite is decoded and compared
+//! with the standard LR's.
+
+use super::tables::{plane_words, ZipperTables};
+use super::{
+    BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT, HEAD_WORDS,
+    IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PLANE_WORDS, PREVIOUS, RECORD_WORDS,
+    STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
+};
+use crate::corner_table::NONE;
+use crate::error::{Error, Result};
+use crate::lr::tables::{LrLayout, LrTables, IRREGULAR, LEFT, NULL, WART};
+
+/// What slot `(v, side)` of `t` stores after chain value `chain`: its symbol, the chain
+/// value after it, and the words it adds to the exception or record list.
+fn symbol(t: &LrTables<Vec<u32>>, v: u32, side: usize, chain: u32) -> (u32, u32, Vec<u32>) {
+    let entry = t.entry(v, side);
+    let tip = t.tip(v, side);
+    let stored = (entry & WART) | tip;
+    if entry & IRREGULAR != 0 {
+        return (IRREGULAR_SLOT, tip, vec![stored]);
+    }
+    if entry & WART != 0 {
+        return (EXCEPTION, tip, vec![stored]);
+    }
+    if tip == t.ring_prev(v) {
+        return (PREVIOUS, chain, vec![]);
+    }
+    let next_next_or_null = if side == LEFT {
+        t.ring_next(t.ring_next(v))
+    } else {
+        NULL
+    };
+    if tip == next_next_or_null {
+        return (NEXT_NEXT_OR_NULL, chain, vec![]);
+    }
+    match chain.wrapping_sub(tip) {
+        d @ 0..=3 => (d, tip, vec![]),
+        _ => (EXCEPTION, tip, vec![stored]),
+    }
+}
+
+/// Record word 1 of irregular slot `(v, side)`: the opposites the ring rules cannot infer
+/// (pushing both to `pairs` when one is not enough).
+fn stored_opposites(
+    t: &LrTables<Vec<u32>>,
+    v: u32,
+    side: usize,
+    pairs: &mut Vec<u32>,
+) -> Result<u32> {
+    let stored = [0, 1].map(|k| t.stored_opposite(v, side, k).unwrap_or(NONE));
+    let needed =
+        [0, 1].map(|k| stored[k] != t.inferred_opposite(v, 4 * side as u32 + 2 * k as u32));
+    let t0_offset = |c: u32| {
+        (c != NONE && c >= 8 * t.m_r && c - 8 * t.m_r < 1 << STATE_SHIFT).then(|| c - 8 * t.m_r)
+    };
+    let word = match needed {
+        [false, false] => STORES_NONE << STATE_SHIFT,
+        [true, false] if t0_offset(stored[0]).is_some() => {
+            STORES_FIRST << STATE_SHIFT | t0_offset(stored[0]).unwrap_or(0)
+        }
+        [false, true] if t0_offset(stored[1]).is_some() => {
+            STORES_SECOND << STATE_SHIFT | t0_offset(stored[1]).unwrap_or(0)
+        }
+        _ => {
+            let index = pairs.len() as u32 / 2;
+            if index >= 1 << STATE_SHIFT {
+                return Err(Error::Unsupported(
+                    "zipper: more than 2^30 opposite pairs".into(),
+                ));
+            }
+            pairs.extend(stored);
+            STORES_BOTH << STATE_SHIFT | index
+        }
+    };
+    Ok(word)
+}
+
+/// The Zipper tables of a standard LR (the same ids and flags).
+pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
+    let m_r = t.m_r;
+    let blocks = (m_r as usize).div_ceil(1 << BLOCK_SHIFT);
+    let mut planes = Vec::with_capacity(blocks * PLANE_WORDS);
+    let mut heads = vec![0u32; blocks * HEAD_WORDS];
+    let (mut exceptions, mut records, mut pairs) = (Vec::new(), Vec::new(), Vec::new());
+    // Each side's chain starts at its first slot's tip (any value would do: the decoder
+    // reads the anchors).
+    let mut chain = [0, 1].map(|side| if m_r > 0 { t.tip(0, side) } else { 0 });
+    for block in 0..blocks {
+        let head = &mut heads[block * HEAD_WORDS..(block + 1) * HEAD_WORDS];
+        head.copy_from_slice(&[
+            chain[0],
+            chain[1],
+            exceptions.len() as u32,
+            (records.len() / RECORD_WORDS) as u32,
+        ]);
+        let first = (block << BLOCK_SHIFT) as u32;
+        let mut p = [0u128; 3];
+        for v in first..m_r.min(first + (1 << BLOCK_SHIFT)) {
+            for (side, chain) in chain.iter_mut().enumerate() {
+                let (s, next, words) = symbol(t, v, side, *chain);
+                *chain = next;
+                match s {
+                    EXCEPTION => exceptions.extend(words),
+                    IRREGULAR_SLOT => {
+                        records.extend(words);
+                        records.push(stored_opposites(t, v, side, &mut pairs)?);
+                    }
+                    _ => {}
+                }
+                let bit = 2 * (v - first) + side as u32;
+                for (k, plane) in p.iter_mut().enumerate() {
+                    *plane |= (((s >> k) & 1) as u128) << bit;
+                }
+            }
+        }
+        let words = plane_words(block, m_r);
+        for plane in p {
+            planes.extend((0..words).map(|q| (plane >> (32 * q)) as u32));
+        }
+    }
+
+    let n0 = t.t0_count();
+    let mut t0_codes = Vec::with_capacity(n0 as usize);
+    let mut t0_explicit = Vec::new();
+    for j in 0..n0 {
+        if t0_explicit.len() >= 1 << (32 - EXPLICIT_SHIFT) {
+            return Err(Error::Unsupported(
+                "zipper: more explicit T0 opposites than 2^26".into(),
+            ));
+        }
+        let mut word = (t0_explicit.len() as u32) << EXPLICIT_SHIFT;
+        for i in 0..3 {
+            let o = t.vo_o[3 * j as usize + i];
+            let x = t.vo_v[3 * j as usize + (i + 1) % 3];
+            let y = t.vo_v[3 * j as usize + (i + 2) % 3];
+            let code = if o == NONE {
+                NO_OPPOSITE
+            } else if t.find_left(x, y) == o {
+                BY_LEFT_RULE
+            } else if t.find_right(x, y) == o {
+                BY_RIGHT_RULE
+            } else {
+                t0_explicit.push(o);
+                EXPLICIT
+            };
+            word |= code << (2 * i);
+        }
+        t0_codes.push(word);
+    }
+
+    let z = ZipperTables {
+        ring_starts: t.ring_starts.clone(),
+        ring_last: t.ring_last.clone(),
+        ring_rank: t.ring_rank.clone(),
+        planes,
+        heads,
+        exceptions,
+        records,
+        pairs,
+        t0_v: t.vo_v.clone(),
+        t0_codes,
+        t0_explicit,
+        c: t.c.clone(),
+        m_r,
+        m: t.m,
+        boundaries_on_ring: t.boundaries_on_ring,
+    };
+    same_as_standard(&z, t)?;
+    Ok(z)
+}
+
+/// The opposite of transversal corner `k` of slot `(v, side)`: stored or inferred.
+pub(crate) fn opposite<T: LrLayout>(t: &T, v: u32, side: usize, k: usize) -> u32 {
+    t.stored_opposite(v, side, k)
+        .unwrap_or_else(|| t.inferred_opposite(v, 4 * side as u32 + 2 * k as u32))
+}
+
+/// Checks that every slot and T0 opposite of `z` decodes to what `t` holds.
+fn same_as_standard(z: &ZipperTables<Vec<u32>>, t: &LrTables<Vec<u32>>) -> Result<()> {
+    for v in 0..t.m_r {
+        for side in 0..2 {
+            let same = z.tip(v, side) == t.tip(v, side)
+                && z.wart(v, side) == t.wart(v, side)
+                && z.irregular(v, side) == t.irregular(v, side)
+                && (0..2).all(|k| opposite(z, v, side, k) == opposite(t, v, side, k));
+            if !same {
+                return Err(Error::Internal(format!(
+                    "zipper slot ({v}, {side}) does not decode to the LR's"
+                )));
+            }
+        }
+    }
+    for k in 0..3 * t.t0_count() {
+        if z.t0_opposite(k) != t.t0_opposite(k) {
+            return Err(Error::Internal(format!(
+                "zipper T0 corner row {k} does not decode to the LR's opposite"
+            )));
+        }
+    }
+    Ok(())
+}

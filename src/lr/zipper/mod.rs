@@ -1,0 +1,224 @@
+//! Zipper: the LR's slots in about three bits each (after Gurung, Luffel, Lindstrom and
+//! Rossignac, "Zipper: a compact connectivity data structure for triangle meshes", CAD 45(2),
+//! 2013; our own layout).
+//!
+//! Along a ring the tips of consecutive slots on one side run backwards one small step at a
+//! time: the left tips walk the previous turn of the spiral, the right tips the next one. So
+//! each slot stores a 3-bit **symbol** instead of a 32-bit entry:
+//!
+//! - `0..=3`: the tip is the side's **chain value** minus the symbol, and becomes the chain
+//!   value;
+//! - `4`: the tip is `v.p` (a canonical T2); `5`: on the left the tip is `v.n.n` (the
+//!   redundant copy of a T2), on the right `NULL` (no triangle); the chain value does not
+//!   move;
+//! - `6`: an **exception**, a word with the WART flag and the tip;
+//! - `7`: an **irregular** slot, a record with the WART flag and the tip, then the opposite
+//!   that the ring rules cannot infer (always a T0 corner on the meshes we measured: the
+//!   slots next to T0 triangles), or a pair of opposites stored whole.
+//!
+//! An exception's or record's tip becomes the chain value. The slots of 64 ring vertices
+//! (slot `2i + side` of the block) lie in three 128-bit planes, one bit of each symbol per
+//! plane, so that a tip is found in constant time with bit operations: the last exception or
+//! record of its side in the block at or before it (or the block's **anchor** for that side,
+//! the chain value before the block) minus the sum of the delta symbols in between, a few
+//! population counts. Each block's head holds the two anchors and the exceptions and records
+//! before the block.
+//!
+//! T0 rows hold three vertices and a word of 2-bit codes: each opposite is found by the
+//! left-slot or the right-slot search of the ring rules (the searches of the ring corners),
+//! is `NONE`, or is stored in a list of explicit opposites (the row's word says where its
+//! first one is). Rings and C are the standard LR's, and so are every id and flag: every
+//! operator is [`LrLayout`](super::LrLayout)'s and answers as the standard LR does.
+
+mod encode;
+mod tables;
+
+pub use tables::ZipperTables;
+
+use super::{Lr, LrCounts, LrOptions};
+use crate::corner_table::CornerTable;
+use crate::error::Result;
+use crate::ids::{Triangle, Vertex};
+
+/// Ring vertices per block: `v >> BLOCK_SHIFT` is the block of `v`.
+pub const BLOCK_SHIFT: u32 = 6;
+/// Symbols below this are chain deltas.
+pub const DELTAS: u32 = 4;
+/// Symbol: the tip is `v.p`.
+pub const PREVIOUS: u32 = 4;
+/// Symbol: the tip is `v.n.n` on the left, `NULL` on the right.
+pub const NEXT_NEXT_OR_NULL: u32 = 5;
+/// Symbol: the slot's tip and WART flag are in the exception list.
+pub const EXCEPTION: u32 = 6;
+/// Symbol: the slot is irregular, its record in the record list.
+pub const IRREGULAR_SLOT: u32 = 7;
+/// Words per block in the plane array: three planes of 128 bits, low word first (the last
+/// block's planes have only the words its slots need).
+pub const PLANE_WORDS: usize = 12;
+/// Words per block in the head array: the left and right anchors, the exceptions and the
+/// records before the block.
+pub const HEAD_WORDS: usize = 4;
+/// Words per record: WART flag and tip, then which opposites are stored and the stored one.
+pub const RECORD_WORDS: usize = 2;
+/// Record word 1, bits 30–31: no opposite stored (both inferred).
+pub const STORES_NONE: u32 = 0;
+/// The first transversal corner's opposite is the T0 corner `8 m_r` + the low 30 bits.
+pub const STORES_FIRST: u32 = 1;
+/// The second transversal corner's opposite is the T0 corner `8 m_r` + the low 30 bits.
+pub const STORES_SECOND: u32 = 2;
+/// Both opposites are stored whole, in the pair list at the index of the low 30 bits.
+pub const STORES_BOTH: u32 = 3;
+/// Where a record's storage state lies in its word 1.
+pub const STATE_SHIFT: u32 = 30;
+/// T0 row codes of an opposite.
+pub const BY_LEFT_RULE: u32 = 0;
+/// The opposite is the right-slot search's answer.
+pub const BY_RIGHT_RULE: u32 = 1;
+/// The corner has no opposite (a boundary).
+pub const NO_OPPOSITE: u32 = 2;
+/// The opposite is in the list of explicit T0 opposites.
+pub const EXPLICIT: u32 = 3;
+/// Bits of a T0 row's code word below its first explicit opposite's index.
+pub const EXPLICIT_SHIFT: u32 = 6;
+
+/// A mesh's connectivity in Zipper form, with the maps back to the input.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Zipper {
+    tables: ZipperTables<Vec<u32>>,
+    /// The standard LR it encodes: vertex and triangle ids, counts and the maps to the input.
+    lr: Lr,
+}
+
+impl Zipper {
+    /// Builds the standard LR of `ct` and encodes it.
+    ///
+    /// # Errors
+    /// [`Error::Unsupported`](crate::Error::Unsupported) when the mesh exceeds the LR's id
+    /// space.
+    pub fn build(ct: &CornerTable, options: &LrOptions) -> Result<Zipper> {
+        Zipper::encode(Lr::build(ct, options)?)
+    }
+
+    /// Encodes a standard LR (same vertex, triangle and corner ids).
+    ///
+    /// # Errors
+    /// [`Error::Unsupported`](crate::Error::Unsupported) when the T0 rows have more explicit
+    /// opposites than their code words can index (2^26).
+    pub fn encode(lr: Lr) -> Result<Zipper> {
+        let tables = encode::encode(lr.tables())?;
+        Ok(Zipper { tables, lr })
+    }
+
+    /// The tables, which implement the corner operators.
+    pub fn tables(&self) -> &ZipperTables<Vec<u32>> {
+        &self.tables
+    }
+
+    /// The standard LR counts of the ring.
+    pub fn counts(&self) -> LrCounts {
+        self.lr.counts()
+    }
+
+    /// The input vertex that vertex `v` stands for.
+    pub fn input_vertex(&self, v: Vertex) -> u32 {
+        self.lr.input_vertex(v)
+    }
+
+    /// The input triangle that canonical triangle `t` stands for.
+    pub fn input_triangle(&self, t: Triangle) -> u32 {
+        self.lr.input_triangle(t)
+    }
+
+    /// Degenerate input triangles, kept aside: `(input index, input vertex triple)`.
+    pub fn kept_aside(&self) -> &[(u32, [u32; 3])] {
+        self.lr.kept_aside()
+    }
+
+    /// The input triangles, in input order, from the Zipper tables alone (each with the same
+    /// orientation, possibly rotated).
+    pub fn input_triangles(&self) -> Vec<[u32; 3]> {
+        use crate::ops::CornerOps;
+        let kept = self.kept_aside();
+        let mut out = vec![[0u32; 3]; self.counts().triangles as usize + kept.len()];
+        for t in self.tables.triangles() {
+            let [a, b, c] = self
+                .tables
+                .triangle_vertices(t)
+                .map(|v| self.input_vertex(v));
+            out[self.input_triangle(t) as usize] = [a, b, c];
+        }
+        for &(input, tri) in kept {
+            out[input as usize] = tri;
+        }
+        out
+    }
+
+    /// The statistics of `lrmesh stats` (JSON object `zipper`).
+    pub fn stats(&self) -> ZipperStats {
+        let t = &self.tables;
+        let n = self.counts().triangles.max(1) as f64;
+        let bytes = t.stored_bytes();
+        let parts = t.part_words();
+        let bits = |words: usize| 32.0 * words as f64 / n;
+        ZipperStats {
+            triangles: self.counts().triangles,
+            exceptions_pct: 100.0 * (t.exception_count() + t.record_count()) as f64 / n,
+            bytes,
+            bits_per_triangle: 8.0 * bytes as f64 / n,
+            symbol_bits: bits(parts[0]),
+            exception_bits: bits(parts[1]),
+            record_bits: bits(parts[2]),
+            t0_bits: bits(parts[3]),
+        }
+    }
+}
+
+/// The Zipper's statistics (`lrmesh stats`, JSON object `zipper`).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct ZipperStats {
+    /// Triangles `n` (degenerate ones, kept aside, not counted).
+    pub triangles: u32,
+    /// Exception and irregular slots, as a percentage of triangles.
+    pub exceptions_pct: f64,
+    /// Bytes of the tables.
+    pub bytes: u64,
+    /// Connectivity bits per triangle: every byte of the tables.
+    pub bits_per_triangle: f64,
+    /// Of those, the symbol planes and block heads.
+    pub symbol_bits: f64,
+    /// The exception entries.
+    pub exception_bits: f64,
+    /// The records of irregular slots.
+    pub record_bits: f64,
+    /// The T0 rows and their explicit opposites.
+    pub t0_bits: f64,
+}
+
+impl std::fmt::Display for ZipperStats {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        writeln!(f, "zipper")?;
+        writeln!(f, "  exceptions               {:.2}%", self.exceptions_pct)?;
+        writeln!(
+            f,
+            "  symbols and heads        {:.2} bits/t",
+            self.symbol_bits
+        )?;
+        writeln!(
+            f,
+            "  exceptions               {:.2} bits/t",
+            self.exception_bits
+        )?;
+        writeln!(
+            f,
+            "  irregular records        {:.2} bits/t",
+            self.record_bits
+        )?;
+        writeln!(f, "  T0 rows                  {:.2} bits/t", self.t0_bits)?;
+        writeln!(f, "  bytes                    {}", self.bytes)?;
+        writeln!(
+            f,
+            "  bits per triangle        {:.2}",
+            self.bits_per_triangle
+        )
+    }
+}

@@ -1,0 +1,288 @@
+//! The decoding side of the Zipper: the tables [`ZipperTables`] as they lie on disk and the
+//! [`LrLayout`] implementation through which the corner operators read them.
+
+use super::{
+    BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, DELTAS, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT,
+    HEAD_WORDS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PLANE_WORDS, PREVIOUS,
+    RECORD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_SECOND,
+};
+use crate::corner_table::NONE;
+use crate::lr::tables::{LrLayout, LEFT, NULL, VALUE, WART};
+use crate::words::Words;
+
+/// The bits of the left slots of a block (slot `2i + side`).
+const LEFT_SLOTS: u128 = 0x5555_5555_5555_5555_5555_5555_5555_5555;
+
+/// The Zipper tables over words `W` (vectors after construction, little-endian bytes in a
+/// container).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ZipperTables<W> {
+    pub(crate) ring_starts: W,
+    /// Empty with one ring (never read then).
+    pub(crate) ring_last: W,
+    pub(crate) ring_rank: W,
+    /// Per block: the three symbol planes.
+    pub(crate) planes: W,
+    /// Per block: the two anchors, the exceptions and the records before it.
+    pub(crate) heads: W,
+    /// Exception words: WART flag and tip.
+    pub(crate) exceptions: W,
+    /// Records of irregular slots: WART flag and tip, then the stored opposite.
+    pub(crate) records: W,
+    /// Opposite pairs of records that store both, two words each.
+    pub(crate) pairs: W,
+    /// T0 rows' vertices, three each.
+    pub(crate) t0_v: W,
+    /// T0 rows' code words: three 2-bit opposite codes and the index of the first explicit
+    /// opposite.
+    pub(crate) t0_codes: W,
+    /// Explicit T0 opposites, row by row.
+    pub(crate) t0_explicit: W,
+    /// A corner of each isolated vertex (`NONE` for a vertex without triangles).
+    pub(crate) c: W,
+    pub(crate) m_r: u32,
+    pub(crate) m: u32,
+    /// As [`LrTables`](crate::lr::LrTables)' field: derived, never stored.
+    pub(crate) boundaries_on_ring: bool,
+}
+
+/// The symbol planes of one block and where a slot lies in them.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Slot {
+    pub block: usize,
+    /// The slot's bit: `2i + side`.
+    pub bit: u32,
+    pub p: [u128; 3],
+}
+
+impl Slot {
+    /// The symbol of the slot at `bit`.
+    #[inline(always)]
+    pub fn symbol_at(&self, bit: u32) -> u32 {
+        ((self.p[0] >> bit) & 1 | ((self.p[1] >> bit) & 1) << 1 | ((self.p[2] >> bit) & 1) << 2)
+            as u32
+    }
+
+    /// This slot's symbol.
+    #[inline(always)]
+    pub fn symbol(&self) -> u32 {
+        self.symbol_at(self.bit)
+    }
+
+    /// The block's exception slots, one bit each.
+    #[inline(always)]
+    pub fn exceptions(&self) -> u128 {
+        !self.p[0] & self.p[1] & self.p[2]
+    }
+
+    /// The block's irregular slots.
+    #[inline(always)]
+    pub fn irregular(&self) -> u128 {
+        self.p[0] & self.p[1] & self.p[2]
+    }
+}
+
+/// Bits `0..=i`.
+#[inline(always)]
+fn up_to(i: u32) -> u128 {
+    u128::MAX >> (127 - i)
+}
+
+/// Words of each plane of block `block` when there are `m_r` ring vertices: 4, or what the
+/// last block's slots need.
+#[inline(always)]
+pub(crate) fn plane_words(block: usize, m_r: u32) -> usize {
+    let slots = 2 * (m_r as usize - (block << BLOCK_SHIFT)).min(1 << BLOCK_SHIFT);
+    slots.div_ceil(32)
+}
+
+impl<W: Words> ZipperTables<W> {
+    /// The block of slot `(v, side)`.
+    #[inline(always)]
+    pub(crate) fn slot(&self, v: u32, side: usize) -> Slot {
+        let block = (v >> BLOCK_SHIFT) as usize;
+        let at = block * PLANE_WORDS;
+        let words = plane_words(block, self.m_r);
+        let word = |k: usize| {
+            (0..words).fold(0u128, |p, q| {
+                p | (self.planes.at(at + k * words + q) as u128) << (32 * q)
+            })
+        };
+        Slot {
+            block,
+            bit: 2 * (v & ((1 << BLOCK_SHIFT) - 1)) + side as u32,
+            p: [word(0), word(1), word(2)],
+        }
+    }
+
+    #[inline(always)]
+    fn head(&self, block: usize, k: usize) -> u32 {
+        self.heads.at(block * HEAD_WORDS + k)
+    }
+
+    /// The word holding the WART flag and the tip of exception or irregular slot `bit`.
+    #[inline(always)]
+    fn stored_word(&self, slot: &Slot, bit: u32) -> u32 {
+        let below = (1u128 << bit) - 1;
+        if slot.symbol_at(bit) == EXCEPTION {
+            let x = self.head(slot.block, 2) as usize
+                + (slot.exceptions() & below).count_ones() as usize;
+            self.exceptions.at(x)
+        } else {
+            self.records.at(RECORD_WORDS * self.record_index(slot, bit))
+        }
+    }
+
+    /// Index of the record of irregular slot `bit`.
+    #[inline(always)]
+    fn record_index(&self, slot: &Slot, bit: u32) -> usize {
+        let below = (1u128 << bit) - 1;
+        self.head(slot.block, 3) as usize + (slot.irregular() & below).count_ones() as usize
+    }
+
+    /// The tip of a delta slot: its side's chain value after it.
+    #[inline(always)]
+    fn chain(&self, slot: &Slot) -> u32 {
+        let side = (slot.bit & 1) as usize;
+        let same = (LEFT_SLOTS << side) & up_to(slot.bit);
+        let resets = slot.p[1] & slot.p[2] & same;
+        let (base, range) = if resets == 0 {
+            (self.head(slot.block, side), same)
+        } else {
+            let j = 127 - resets.leading_zeros();
+            (self.stored_word(slot, j) & VALUE, same & !up_to(j))
+        };
+        let deltas = range & !slot.p[2];
+        let sum = (slot.p[0] & deltas).count_ones() + 2 * (slot.p[1] & deltas).count_ones();
+        base.wrapping_sub(sum)
+    }
+
+    /// Number of exception slots.
+    pub fn exception_count(&self) -> usize {
+        self.exceptions.count()
+    }
+
+    /// Number of irregular slots.
+    pub fn record_count(&self) -> usize {
+        self.records.count() / RECORD_WORDS
+    }
+
+    /// Words of the parts: symbols and heads, exceptions, records, T0 rows.
+    pub(crate) fn part_words(&self) -> [usize; 4] {
+        [
+            self.planes.count() + self.heads.count(),
+            self.exceptions.count(),
+            self.records.count() + self.pairs.count(),
+            self.t0_v.count() + self.t0_codes.count() + self.t0_explicit.count(),
+        ]
+    }
+
+    /// Bytes of the tables as a container stores them, with the counts that describe them.
+    pub fn stored_bytes(&self) -> u64 {
+        // m, m_r, rings, T0 rows, exceptions, records, pairs, explicit opposites.
+        const COUNTS: usize = 8;
+        let words = COUNTS
+            + self.ring_starts.count()
+            + self.ring_last.count()
+            + self.ring_rank.count()
+            + self.part_words().iter().sum::<usize>()
+            + self.c.count();
+        4 * words as u64
+    }
+}
+
+impl<W: Words> LrLayout for ZipperTables<W> {
+    #[inline(always)]
+    fn ring_vertices(&self) -> u32 {
+        self.m_r
+    }
+    #[inline(always)]
+    fn vertex_count(&self) -> u32 {
+        self.m
+    }
+    #[inline(always)]
+    fn t0_count(&self) -> u32 {
+        self.t0_codes.count() as u32
+    }
+    #[inline(always)]
+    fn ring_count(&self) -> usize {
+        self.ring_starts.count().saturating_sub(1)
+    }
+    #[inline(always)]
+    fn ring_start(&self, ring: usize) -> u32 {
+        self.ring_starts.at(ring)
+    }
+    #[inline(always)]
+    fn ring_last_word(&self, i: usize) -> u32 {
+        self.ring_last.at(i)
+    }
+    #[inline(always)]
+    fn ring_rank_word(&self, i: usize) -> u32 {
+        self.ring_rank.at(i)
+    }
+    #[inline(always)]
+    fn tip(&self, v: u32, side: usize) -> u32 {
+        let slot = self.slot(v, side);
+        match slot.symbol() {
+            s if s < DELTAS => self.chain(&slot),
+            PREVIOUS => self.ring_prev(v),
+            NEXT_NEXT_OR_NULL if side == LEFT => self.ring_next(self.ring_next(v)),
+            NEXT_NEXT_OR_NULL => NULL,
+            _ => self.stored_word(&slot, slot.bit) & VALUE,
+        }
+    }
+    #[inline(always)]
+    fn wart(&self, v: u32, side: usize) -> bool {
+        let slot = self.slot(v, side);
+        slot.symbol() >= EXCEPTION && self.stored_word(&slot, slot.bit) & WART != 0
+    }
+    #[inline(always)]
+    fn irregular(&self, v: u32, side: usize) -> bool {
+        self.slot(v, side).symbol() == IRREGULAR_SLOT
+    }
+    #[inline(always)]
+    fn stored_opposite(&self, v: u32, side: usize, second: usize) -> Option<u32> {
+        let slot = self.slot(v, side);
+        if slot.symbol() != IRREGULAR_SLOT {
+            return None;
+        }
+        let r = self.record_index(&slot, slot.bit);
+        let word = self.records.at(RECORD_WORDS * r + 1);
+        let value = word & ((1 << STATE_SHIFT) - 1);
+        match (word >> STATE_SHIFT, second) {
+            (STORES_BOTH, _) => Some(self.pairs.at(2 * value as usize + second)),
+            (STORES_FIRST, 0) | (STORES_SECOND, 1) => Some((8 * self.m_r).wrapping_add(value)),
+            _ => None,
+        }
+    }
+    #[inline(always)]
+    fn t0_vertex(&self, k: u32) -> u32 {
+        self.t0_v.at(k as usize)
+    }
+    #[inline(always)]
+    fn t0_opposite(&self, k: u32) -> u32 {
+        let (j, i) = (k / 3, k % 3);
+        let word = self.t0_codes.at(j as usize);
+        let code = word >> (2 * i) & 3;
+        let row_vertex = |i: u32| self.t0_vertex(3 * j + i % 3);
+        match code {
+            BY_LEFT_RULE => self.find_left(row_vertex(i + 1), row_vertex(i + 2)),
+            BY_RIGHT_RULE => self.find_right(row_vertex(i + 1), row_vertex(i + 2)),
+            NO_OPPOSITE => NONE,
+            _ => {
+                // Explicit: after the row's explicit opposites of the corners before it.
+                let before = (0..i).filter(|&e| word >> (2 * e) & 3 == EXPLICIT).count();
+                self.t0_explicit
+                    .at((word >> EXPLICIT_SHIFT) as usize + before)
+            }
+        }
+    }
+    #[inline(always)]
+    fn boundaries_on_ring(&self) -> bool {
+        self.boundaries_on_ring
+    }
+    #[inline(always)]
+    fn isolated_corner(&self, i: u32) -> u32 {
+        self.c.at(i as usize)
+    }
+}
