@@ -65,7 +65,7 @@ fn v12_mesh_counts() {
     breaks(&forge(&tetra, Tag::MESH, |p| p.push(0)), 12, "MESH", at, "");
     let bad = forge(&tetra, Tag::MESH, |p| p.truncate(20));
     breaks(&bad, 12, "MESH", at, "");
-    for kind in [0, 5, u32::MAX] {
+    for kind in [0, 6, u32::MAX] {
         breaks(&mesh_field(&tetra, 16, kind), 12, "MESH", at + 16, "kind");
     }
     breaks(&mesh_field(&tetra, 20, 1), 12, "MESH", at + 20, "reserved");

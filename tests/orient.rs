@@ -31,7 +31,7 @@ fn options(connectivity: Connectivity, keep_order: bool, orient: Orient) -> Enco
 /// Bytes of the connectivity section (the one of MESH's kind).
 fn connectivity_bytes(bytes: &[u8]) -> usize {
     let sections = Sections::parse(bytes, &Limits::default()).unwrap();
-    [Tag::LRTB, Tag::EBRK, Tag::STRP, Tag::LRBE]
+    [Tag::LRTB, Tag::EBRK, Tag::STRP, Tag::LRBE, Tag::ZIPR]
         .iter()
         .find_map(|&t| sections.section(t))
         .unwrap()

@@ -126,6 +126,19 @@ fn listing(name: &str, bytes: &[u8]) -> String {
                 lr.boundaries_on_ring()
             ),
         ),
+        View::Zipper(z) => corner_listing(
+            &mut out,
+            name,
+            z,
+            format!(
+                "{n} triangles, {} ring vertices, {} T0 rows, {} exceptions, {} records, boundaries on the ring: {}",
+                z.ring_vertices(),
+                z.t0_count(),
+                z.exception_count(),
+                z.record_count(),
+                z.boundaries_on_ring()
+            ),
+        ),
         View::Strips(strips) => corner_listing(
             &mut out,
             name,
@@ -357,6 +370,7 @@ fn vectors_match() {
             (Connectivity::Edgebreaker, ".edgebreaker"),
             (Connectivity::Strips, ".strips"),
             (Connectivity::LrCompact, ".lr-compact"),
+            (Connectivity::Zipper, ".zipper"),
         ] {
             if level != default && connectivity != Connectivity::Edgebreaker {
                 continue;

@@ -47,6 +47,7 @@ key() { node -e 'const o = JSON.parse(require("fs").readFileSync(process.argv[1]
 meshes=(
   "$root/spec/vectors/torus_with_t0.lrm"
   "$root/spec/vectors/defective_torus.lr-compact.lrm"
+  "$root/spec/vectors/defective_torus.zipper.lrm"
   "$root/spec/vectors/torus_with_t0.q12.l1.edgebreaker.lrm"
   "$root/spec/vectors/seamed_cube.obj"
   "$root/corpus/meshes/fandisk.off"
@@ -90,7 +91,7 @@ done
 join() { local IFS=,; echo "$*"; }
 cat >"$out/expect.json" <<EOF
 { "meshes": [$(join "${entries[@]}")],
-  "saveKinds": ["edgebreaker", "lr-compact"],
+  "saveKinds": ["edgebreaker", "lr-compact", "zipper"],
   "bench": [$(join "${bench[@]}")] }
 EOF
 
@@ -113,7 +114,7 @@ CHROMIUM=$chromium node "$web/test/run.mjs" --url "http://127.0.0.1:$port/" \
 for m in "${meshes[@]}"; do
   name=$(basename "$m")
   name=${name%.*}
-  for kind in edgebreaker lr-compact; do
+  for kind in edgebreaker lr-compact zipper; do
     saved=$out/$name.$kind.lrm
     check "$name saved as $kind: lrmesh verify" "$lrmesh" verify "$saved"
     same_counts() {

@@ -384,6 +384,126 @@ impl LrbeHeader {
     }
 }
 
+/// `ZIPR` (§3.5e): ten u32, then twelve u32 arrays.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ZiprHeader {
+    /// `m`: vertices.
+    pub m: u32,
+    /// `m_r`: ring vertices.
+    pub m_r: u32,
+    /// `R`: rings.
+    pub rings: u32,
+    /// `n0`: T0 rows.
+    pub t0: u32,
+    /// `X`: exception words.
+    pub exceptions: u32,
+    /// `I`: records of irregular slots.
+    pub records: u32,
+    /// `P`: opposite pairs.
+    pub pairs: u32,
+    /// `E`: explicit T0 opposites.
+    pub explicit: u32,
+    /// Flags: [`LR_BOUNDARIES_ON_RING`] or 0.
+    pub flags: u32,
+    /// Reserved, 0.
+    pub reserved: u32,
+}
+
+impl ZiprHeader {
+    /// Bytes of the header.
+    pub const LEN: usize = 40;
+    /// The arrays, in file order.
+    pub const ARRAYS: [&'static str; 12] = [
+        "ring_starts",
+        "ring_last",
+        "ring_rank",
+        "PLANES",
+        "HEADS",
+        "EXCEPTIONS",
+        "RECORDS",
+        "PAIRS",
+        "T0_V",
+        "T0_CODES",
+        "EXPLICIT",
+        "C",
+    ];
+
+    /// The header at the start of `b` (at least [`ZiprHeader::LEN`] bytes).
+    pub fn read(b: &[u8]) -> ZiprHeader {
+        let [m, m_r, rings, t0, exceptions, records, pairs, explicit, flags, reserved] =
+            read_fields(b);
+        ZiprHeader {
+            m,
+            m_r,
+            rings,
+            t0,
+            exceptions,
+            records,
+            pairs,
+            explicit,
+            flags,
+            reserved,
+        }
+    }
+
+    /// The header's bytes.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut out = Vec::with_capacity(Self::LEN);
+        write_fields(
+            &mut out,
+            &[
+                self.m,
+                self.m_r,
+                self.rings,
+                self.t0,
+                self.exceptions,
+                self.records,
+                self.pairs,
+                self.explicit,
+                self.flags,
+                self.reserved,
+            ],
+        );
+        out
+    }
+
+    /// Whether the ring-end bits and ranks are stored (only with several rings).
+    pub fn has_ring_bits(&self) -> bool {
+        self.rings > 1
+    }
+
+    /// The arrays the counts call for; `None` when `m_r > m` or the sizes overflow.
+    pub fn layout(&self) -> Option<Layout> {
+        use crate::lr::zipper::{plane_array_words, HEAD_WORDS, RECORD_WORDS};
+        let bits = if self.has_ring_bits() {
+            (self.m_r as u64).div_ceil(32)
+        } else {
+            0
+        };
+        let blocks = (self.m_r as u64).div_ceil(1 << crate::lr::zipper::BLOCK_SHIFT);
+        let counts = [
+            self.rings as u64 + 1,
+            bits,
+            bits,
+            plane_array_words(self.m_r) as u64,
+            HEAD_WORDS as u64 * blocks,
+            self.exceptions as u64,
+            RECORD_WORDS as u64 * self.records as u64,
+            2 * self.pairs as u64,
+            3 * self.t0 as u64,
+            self.t0 as u64,
+            self.explicit as u64,
+            (self.m as u64).checked_sub(self.m_r as u64)?,
+        ];
+        let arrays: Vec<_> = Self::ARRAYS
+            .iter()
+            .zip(counts)
+            .map(|(&name, count)| (name, count, 4))
+            .collect();
+        Layout::new(Self::LEN, &arrays)
+    }
+}
+
 /// `STRP` (§3.5c): four u32, then `T`, `A` and `C`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct StrpHeader {

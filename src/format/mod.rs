@@ -24,10 +24,10 @@ pub const MAGIC: [u8; 8] = [0x89, b'L', b'R', b'M', b'\r', b'\n', 0x1a, b'\n'];
 /// Major version written and read. A reader rejects any other major version.
 pub const MAJOR: u16 = 1;
 /// Newest minor version written. Readers accept any minor version of their major version.
-pub const MINOR: u16 = 6;
+pub const MINOR: u16 = 7;
 
-/// The minor version a file of these sections (tags and payloads) is written with: 6 with
-/// `GEOM` encoding 6; 5 with `FLIP`; 4 with an LR flags word set; 3 with
+/// The minor version a file of these sections (tags and payloads) is written with: 7 with
+/// `ZIPR`; 6 with `GEOM` encoding 6; 5 with `FLIP`; 4 with an LR flags word set; 3 with
 /// `PART` labels coded, normals predicted from their neighbours only or `COPC`; 2 with a
 /// position encoding of version 1.2 (`GEOM` encodings 2 to 5), an `ATTR` record of value
 /// encoding 1 or 2 or of seam encoding 1, `PART` runs or `KEPC`; 1 with a section of version 1.1 (`ATTR`, `PART`), 0 otherwise,
@@ -50,6 +50,7 @@ pub fn minor_for<'a>(sections: impl IntoIterator<Item = (Tag, &'a [u8])>) -> u16
             // The LR flags word (FORMAT.md §3.5 and §3.5d).
             Tag::LRTB if bytes.len() >= 24 && le_u32(bytes, 20) != 0 => 4,
             Tag::LRBE if bytes.len() >= 32 && le_u32(bytes, 28) != 0 => 4,
+            Tag::ZIPR => 7,
             Tag::FLIP => 5,
             Tag::KEPC => 2,
             Tag::PART => 1,
@@ -252,6 +253,8 @@ impl Tag {
     pub const STRP: Tag = Tag(*b"STRP");
     /// The bit-efficient LR tables.
     pub const LRBE: Tag = Tag(*b"LRBE");
+    /// The Zipper tables (version 1.7).
+    pub const ZIPR: Tag = Tag(*b"ZIPR");
     /// Vertex copies made by the pseudo-manifold conversion, with their originals.
     pub const COPY: Tag = Tag(*b"COPY");
     /// Degenerate triangles kept aside.
@@ -271,7 +274,7 @@ impl Tag {
     pub const FLIP: Tag = Tag(*b"FLIP");
 
     /// The sections a version-1 reader understands.
-    pub const KNOWN: [Tag; 18] = [
+    pub const KNOWN: [Tag; 19] = [
         Tag::META,
         Tag::MESH,
         Tag::GEOM,
@@ -282,6 +285,7 @@ impl Tag {
         Tag::EBRK,
         Tag::STRP,
         Tag::LRBE,
+        Tag::ZIPR,
         Tag::COPY,
         Tag::COPC,
         Tag::KEPT,
@@ -326,9 +330,17 @@ impl Kind {
     pub const STRIPS: Kind = Kind(3);
     /// Bit-efficient LR in section `LRBE`.
     pub const LR_COMPACT: Kind = Kind(4);
+    /// Zipper in section `ZIPR` (version 1.7).
+    pub const ZIPPER: Kind = Kind(5);
 
     /// Every kind a version-1 reader knows.
-    pub const ALL: [Kind; 4] = [Kind::LR, Kind::EDGEBREAKER, Kind::STRIPS, Kind::LR_COMPACT];
+    pub const ALL: [Kind; 5] = [
+        Kind::LR,
+        Kind::EDGEBREAKER,
+        Kind::STRIPS,
+        Kind::LR_COMPACT,
+        Kind::ZIPPER,
+    ];
 
     /// The section that holds this kind's connectivity; `None` for an unknown kind.
     pub fn tag(self) -> Option<Tag> {
@@ -337,18 +349,20 @@ impl Kind {
             Kind::EDGEBREAKER => Some(Tag::EBRK),
             Kind::STRIPS => Some(Tag::STRP),
             Kind::LR_COMPACT => Some(Tag::LRBE),
+            Kind::ZIPPER => Some(Tag::ZIPR),
             _ => None,
         }
     }
 
     /// The kind's name as the command line spells it: `lr`, `edgebreaker`, `strips`,
-    /// `lr-compact`; `unknown` otherwise.
+    /// `lr-compact`, `zipper`; `unknown` otherwise.
     pub fn name(self) -> &'static str {
         match self {
             Kind::LR => "lr",
             Kind::EDGEBREAKER => "edgebreaker",
             Kind::STRIPS => "strips",
             Kind::LR_COMPACT => "lr-compact",
+            Kind::ZIPPER => "zipper",
             _ => "unknown",
         }
     }

@@ -156,8 +156,8 @@ pub fn container_forged(data: &[u8]) {
     container(&assemble(&sections));
 }
 
-/// A valid container of the LR, bit-efficient LR or strips kind ([`forged_base`], its kind
-/// from bits 0–1 of the first byte modulo 3), whose connectivity section has 16-bit units
+/// A valid container of the LR, bit-efficient LR, Zipper or strips kind ([`forged_base`], its
+/// kind from bits 0–2 of the first byte, bits 0–1 modulo 3), whose connectivity section has 16-bit units
 /// copied over others (each following 4 bytes: the unit to copy, the unit to overwrite) and
 /// its checksums recomputed. Copies of ids, offsets and corners that the file already holds
 /// stay in range far more often than random bytes do, so the files reach the operators while
@@ -169,7 +169,7 @@ pub fn operators(data: &[u8]) {
     };
     let choice = (choice & !3) | ((choice & 3) % 3);
     let mut sections = base_sections(choice);
-    let connectivity = [Tag::LRTB, Tag::LRBE, Tag::STRP];
+    let connectivity = [Tag::LRTB, Tag::LRBE, Tag::ZIPR, Tag::STRP];
     let Some(section) = sections
         .iter_mut()
         .find(|s| connectivity.contains(&s.0))
@@ -199,14 +199,20 @@ fn base_sections(choice: u8) -> Vec<crate::write::SectionBytes> {
         .collect()
 }
 
-/// The valid container [`container_forged`] starts from: bits 0–1 of `choice` the kind,
-/// 2–3 the torus's size, 4 holes and defects and every fifth triangle reversed (the
+/// The valid container [`container_forged`] starts from: bits 0–1 of `choice` the kind
+/// (LR, bit-efficient LR or with bit 2 set Zipper, strips, Edgebreaker), 2–3 the torus's size, 4 holes and defects and every fifth triangle reversed (the
 /// orientation repaired, section `FLIP`), 5 the input order kept, 6 positions and
 /// attribute values quantized (predicted values in Edgebreaker; with bit 2 set, level 1:
 /// positions in `GEOM` encoding 6), 7 seams and parts (with JSON labels at level 0 on the
 /// smallest torus without holes, else coded).
 pub fn forged_base(choice: u8) -> Vec<u8> {
-    let kind = Connectivity::ALL[(choice & 3) as usize];
+    let kind = match choice & 3 {
+        0 => Connectivity::Lr,
+        1 if choice & 4 != 0 => Connectivity::Zipper,
+        1 => Connectivity::LrCompact,
+        2 => Connectivity::Strips,
+        _ => Connectivity::Edgebreaker,
+    };
     let mut mesh = generate::torus(3 + (choice >> 2 & 3) as u32, 4);
     if choice & 0x10 != 0 {
         let mut rng = generate::Rng::new(choice as u64);

@@ -41,6 +41,7 @@ pub mod sections;
 mod strips;
 pub mod summary;
 pub mod view;
+mod zipper;
 
 pub use attributes::AttributeView;
 pub use parts::PartsView;

@@ -7,11 +7,18 @@ use super::fields::Fields;
 use super::summary::{self, ContainerSummary, PositionsSummary};
 use super::{counts, positions, Limits, Sections};
 use crate::error::{Result, Rule};
-use crate::format::layout::{LrbeHeader, LrtbHeader, StrpHeader};
+use crate::format::layout::{LrbeHeader, LrtbHeader, StrpHeader, ZiprHeader};
 use crate::format::{Kind, PositionEncoding, Tag};
 
 /// The sections read by their headers alone: neither their checksums nor their data.
-const DATA: [Tag; 5] = [Tag::LRTB, Tag::LRBE, Tag::STRP, Tag::EBRK, Tag::GEOM];
+const DATA: [Tag; 6] = [
+    Tag::LRTB,
+    Tag::LRBE,
+    Tag::ZIPR,
+    Tag::STRP,
+    Tag::EBRK,
+    Tag::GEOM,
+];
 
 /// Sections whose figures need their data (attributes, parts, reversed triangles): a file
 /// with one is opened whole.
@@ -135,6 +142,18 @@ fn rings(sections: &Sections, kind: Kind, m: u32) -> Result<Option<Rings>> {
                 rings: h.rings,
                 t0: h.t0,
                 records: None,
+            })
+        }
+        Kind::ZIPPER => {
+            let f = header_fields(sections, Tag::ZIPR, ZiprHeader::LEN, Rule(56))?;
+            let h = ZiprHeader::read(f.bytes());
+            f.expect_vertices(0, h.m, m, Rule(56))?;
+            f.expect_len(h.layout().map(|l| l.len), Rule(56))?;
+            Some(Rings {
+                m_r: h.m_r,
+                rings: h.rings,
+                t0: h.t0,
+                records: Some(h.records),
             })
         }
         _ => None,

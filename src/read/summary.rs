@@ -125,11 +125,12 @@ fn attribute_name(semantic: &Semantic) -> String {
 
 /// The sections of the connectivity (`connectivity_bytes`): its tables, copies and kept
 /// triangles.
-const CONNECTIVITY: [Tag; 8] = [
+const CONNECTIVITY: [Tag; 9] = [
     Tag::LRTB,
     Tag::EBRK,
     Tag::STRP,
     Tag::LRBE,
+    Tag::ZIPR,
     Tag::COPY,
     Tag::COPC,
     Tag::KEPT,
@@ -235,6 +236,7 @@ impl Container<'_> {
         let per_triangle = |x: f64| per_triangle(x, triangles);
         let lr = self.lr();
         let compact = self.lr_compact();
+        let zipper = self.zipper();
         let rpt = match &self.connectivity {
             Connectivity::Lr(lr) => {
                 let refs =
@@ -245,7 +247,9 @@ impl Container<'_> {
                 strips.len() as u32,
                 strips.vertex_id_bound(),
             ) as f64)),
-            Connectivity::Edgebreaker(_) | Connectivity::LrCompact(_) => None,
+            Connectivity::Edgebreaker(_) | Connectivity::LrCompact(_) | Connectivity::Zipper(_) => {
+                None
+            }
         };
         let attribute_details: Vec<AttributeSummary> = self
             .attributes()
@@ -296,14 +300,19 @@ impl Container<'_> {
             vertex_copies: (self.copies.count() / 2) as u32,
             ring_vertices: lr
                 .map(|lr| lr.ring_vertices())
-                .or(compact.map(|lr| lr.ring_vertices())),
+                .or(compact.map(|lr| lr.ring_vertices()))
+                .or(zipper.map(|z| z.ring_vertices())),
             rings: lr
                 .map(|lr| lr.ring_count() as u32)
-                .or(compact.map(|lr| lr.ring_count() as u32)),
+                .or(compact.map(|lr| lr.ring_count() as u32))
+                .or(zipper.map(|z| z.ring_count() as u32)),
             t0_triangles: lr
                 .map(|lr| lr.t0_count())
-                .or(compact.map(|lr| lr.t0_count())),
-            irregular_triangles: lr.map(|lr| lr.record_count()),
+                .or(compact.map(|lr| lr.t0_count()))
+                .or(zipper.map(|z| z.t0_count())),
+            irregular_triangles: lr
+                .map(|lr| lr.record_count())
+                .or(zipper.map(|z| z.record_count() as u32)),
             connectivity_bytes,
             connectivity_bpt: per_triangle(8.0 * connectivity_bytes as f64),
             rpt,

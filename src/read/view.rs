@@ -5,12 +5,12 @@
 use super::attributes::{self, AttributeView};
 use super::parts::{self, PartsView};
 use super::positions::{self, Positions};
-use super::{counts, edgebreaker, lr, lr_compact, strips, Limits, Sections};
+use super::{counts, edgebreaker, lr, lr_compact, strips, zipper, Limits, Sections};
 use crate::corner_table::CornerTable;
 use crate::error::{Result, Rule};
 use crate::format::{Kind, Metadata};
 use crate::ids::{Corner, Triangle, Vertex};
-use crate::lr::{CompactTables, LrLayout, LrTables};
+use crate::lr::{CompactTables, LrLayout, LrTables, ZipperTables};
 use crate::mesh::{ComponentType, Semantic};
 use crate::ops::CornerOps;
 use crate::strips::CtsTables;
@@ -35,6 +35,8 @@ pub enum Connectivity<'a> {
     Strips(CtsTables<LeWords<'a>>),
     /// Bit-efficient LR tables, answering the corner operators on the buffer.
     LrCompact(CompactTables<LeWords<'a>, LeUnits<'a>>),
+    /// Zipper tables, answering the corner operators on the buffer.
+    Zipper(ZipperTables<LeWords<'a>>),
 }
 
 /// Runs `$body` with `$t` bound to the variant's tables.
@@ -45,6 +47,7 @@ macro_rules! each {
             Connectivity::Edgebreaker($t) => $body,
             Connectivity::Strips($t) => $body,
             Connectivity::LrCompact($t) => $body,
+            Connectivity::Zipper($t) => $body,
         }
     };
 }
@@ -57,10 +60,12 @@ impl Connectivity<'_> {
             Connectivity::Edgebreaker(_) => Kind::EDGEBREAKER,
             Connectivity::Strips(_) => Kind::STRIPS,
             Connectivity::LrCompact(_) => Kind::LR_COMPACT,
+            Connectivity::Zipper(_) => Kind::ZIPPER,
         }
     }
 
-    /// The connectivity kind's name: `lr`, `edgebreaker`, `strips` or `lr-compact`.
+    /// The connectivity kind's name: `lr`, `edgebreaker`, `strips`, `lr-compact` or
+    /// `zipper`.
     pub fn name(&self) -> &'static str {
         self.kind().name()
     }
@@ -72,6 +77,7 @@ impl Connectivity<'_> {
             Connectivity::Edgebreaker(t) => c.0 < 3 * t.triangle_id_bound(),
             Connectivity::Strips(t) => t.is_corner(c),
             Connectivity::LrCompact(t) => t.is_corner(c),
+            Connectivity::Zipper(t) => t.is_corner(c),
         }
     }
 
@@ -202,6 +208,7 @@ impl<'a> Container<'a> {
             Connectivity::LrCompact(t) => {
                 *t = lr_compact::lr_compact_tables(&self.sections, m, true)?.0
             }
+            Connectivity::Zipper(t) => *t = zipper::zipper_tables(&self.sections, m, true)?.0,
             Connectivity::Strips(t) => *t = strips::strips_tables(&self.sections, m, true)?,
             // Decoded whole when opened: the decoder checks everything it builds.
             Connectivity::Edgebreaker(_) => {}
@@ -230,6 +237,10 @@ impl<'a> Container<'a> {
             Kind::LR_COMPACT => {
                 let (tables, held) = lr_compact::lr_compact_tables(&sections, m, false)?;
                 (Connectivity::LrCompact(tables), held)
+            }
+            Kind::ZIPPER => {
+                let (tables, held) = zipper::zipper_tables(&sections, m, false)?;
+                (Connectivity::Zipper(tables), held)
             }
             _ => {
                 // Decoded whole: the decoder checks everything it builds.
@@ -356,6 +367,14 @@ impl<'a> Container<'a> {
     pub fn lr_compact(&self) -> Option<&CompactTables<LeWords<'a>, LeUnits<'a>>> {
         match &self.connectivity {
             Connectivity::LrCompact(lr) => Some(lr),
+            _ => None,
+        }
+    }
+
+    /// The Zipper tables, when the container holds them.
+    pub fn zipper(&self) -> Option<&ZipperTables<LeWords<'a>>> {
+        match &self.connectivity {
+            Connectivity::Zipper(z) => Some(z),
             _ => None,
         }
     }

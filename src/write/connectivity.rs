@@ -5,11 +5,11 @@ use crate::corner_table::CornerTable;
 use crate::edgebreaker;
 use crate::error::Result;
 use crate::format::layout::{
-    write_fields, Layout, LrbeHeader, LrtbHeader, StrpHeader, LR_BOUNDARIES_ON_RING,
+    write_fields, Layout, LrbeHeader, LrtbHeader, StrpHeader, ZiprHeader, LR_BOUNDARIES_ON_RING,
 };
 use crate::format::{Kind, Tag};
 use crate::ids::{Triangle, Vertex};
-use crate::lr::{CompactLr, Lr, LrLayout};
+use crate::lr::{CompactLr, Lr, LrLayout, Zipper};
 use crate::ops::CornerOps;
 use crate::strips::Cts;
 
@@ -196,6 +196,62 @@ pub(crate) fn lr_compact_header(lr: &CompactLr) -> LrbeHeader {
         overflow_rows: t.overflow_rows(),
         period: lr.period(),
         flags: boundary_flag(t),
+    }
+}
+
+/// The `ZIPR` section of a built Zipper.
+/// With `shape`, the triangles as a reader numbers them (see [`Shape::of`]).
+pub(super) fn zipper_section(z: &Zipper, shape: bool) -> Encoded {
+    let t = z.tables();
+    let header = zipper_header(z);
+    let layout = header.layout().expect("a built Zipper fits its layout");
+    let mut p = header.to_bytes();
+    write_arrays(
+        &mut p,
+        &layout,
+        &[
+            &t.ring_starts,
+            &t.ring_last,
+            &t.ring_rank,
+            &t.planes,
+            &t.heads,
+            &t.exceptions,
+            &t.records,
+            &t.pairs,
+            &t.t0_v,
+            &t.t0_codes,
+            &t.t0_explicit,
+            &t.c,
+        ],
+        &[],
+    );
+    Encoded {
+        kind: Kind::ZIPPER,
+        tag: Tag::ZIPR,
+        payload: p,
+        input_vertex: (0..t.vertex_id_bound())
+            .map(|v| z.input_vertex(Vertex(v)))
+            .collect(),
+        input_triangle: input_triangles(t, |tri| z.input_triangle(tri)),
+        shape: Shape::of(t, shape),
+        decoder_table: None,
+    }
+}
+
+/// The `ZIPR` header of a built Zipper.
+pub(crate) fn zipper_header(z: &Zipper) -> ZiprHeader {
+    let t = z.tables();
+    ZiprHeader {
+        m: t.m,
+        m_r: t.m_r,
+        rings: t.ring_count() as u32,
+        t0: t.t0_count(),
+        exceptions: t.exception_count() as u32,
+        records: t.record_count() as u32,
+        pairs: (t.pairs.len() / 2) as u32,
+        explicit: t.t0_explicit.len() as u32,
+        flags: boundary_flag(t),
+        reserved: 0,
     }
 }
 

@@ -15,7 +15,7 @@ use crate::corner_table::CornerTable;
 use crate::error::{Error, Result};
 use crate::format::layout::{write_fields, MeshRecord};
 use crate::format::{Flags, Metadata, Tag};
-use crate::lr::{CompactLr, CompactOptions, Lr, LrOptions};
+use crate::lr::{CompactLr, CompactOptions, Lr, LrOptions, Zipper};
 use crate::mesh::Oriented;
 use crate::strips::{Cts, StripOptions};
 use crate::Mesh;
@@ -35,13 +35,17 @@ pub enum Connectivity {
     /// Bit-efficient LR (section `LRBE`): about 16 bits per triangle plus the irregular
     /// ones, corner queries on the buffer.
     LrCompact,
+    /// Zipper (section `ZIPR`): the LR's slots in 3-bit symbols, corner queries on the
+    /// buffer.
+    Zipper,
 }
 
 impl Connectivity {
     /// Every kind, for a caller that tries them all.
-    pub const ALL: [Connectivity; 4] = [
+    pub const ALL: [Connectivity; 5] = [
         Connectivity::Lr,
         Connectivity::LrCompact,
+        Connectivity::Zipper,
         Connectivity::Strips,
         Connectivity::Edgebreaker,
     ];
@@ -159,6 +163,8 @@ pub enum Built<'a> {
     Lr(&'a Lr),
     /// A bit-efficient LR of the mesh, stored as it is.
     LrCompact(&'a CompactLr),
+    /// A Zipper of the mesh, stored as it is.
+    Zipper(&'a Zipper),
     /// Strips of the mesh, stored as they are.
     Strips(&'a Cts),
 }
@@ -291,6 +297,7 @@ pub fn encode_built(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Resul
 enum Made {
     Lr(Lr),
     LrCompact(CompactLr),
+    Zipper(Zipper),
     Strips(Cts),
 }
 
@@ -307,6 +314,7 @@ fn make(table: &CornerTable, options: &EncodeOptions) -> Result<Option<Made>> {
                 periods: options.periods.clone(),
             },
         )?)),
+        Connectivity::Zipper => Some(Made::Zipper(Zipper::build(table, &options.lr)?)),
         Connectivity::Edgebreaker => None,
     })
 }
@@ -316,6 +324,7 @@ fn made_section(made: &Made, shape: bool) -> Encoded {
     match made {
         Made::Lr(lr) => connectivity::lr_section(lr, shape),
         Made::LrCompact(lr) => connectivity::lr_compact_section(lr, shape),
+        Made::Zipper(z) => connectivity::zipper_section(z, shape),
         Made::Strips(cts) => connectivity::strips_section(cts, shape),
     }
 }
@@ -331,6 +340,7 @@ fn connectivity(
     Ok(match built {
         Built::Lr(lr) => connectivity::lr_section(lr, shape),
         Built::LrCompact(lr) => connectivity::lr_compact_section(lr, shape),
+        Built::Zipper(z) => connectivity::zipper_section(z, shape),
         Built::Strips(cts) => connectivity::strips_section(cts, shape),
         Built::Table(table) => match make(table, options)? {
             Some(made) => made_section(&made, shape),
@@ -375,6 +385,7 @@ fn sections(
                 Built::Table(t) => t.kept_aside(),
                 Built::Lr(lr) => lr.kept_aside(),
                 Built::LrCompact(lr) => lr.kept_aside(),
+                Built::Zipper(z) => z.kept_aside(),
                 Built::Strips(cts) => cts.kept_aside(),
             };
             (

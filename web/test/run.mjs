@@ -207,7 +207,7 @@ async function canvasCoverage(page) {
 
 async function testModes(page, mesh, out) {
   const { name, info } = mesh;
-  const hasRings = ['lr', 'lr-compact'].includes(info.connectivity);
+  const hasRings = ['lr', 'lr-compact', 'zipper'].includes(info.connectivity);
   const expected = {
     shaded: true,
     ring: hasRings,

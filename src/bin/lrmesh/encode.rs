@@ -92,6 +92,8 @@ enum Connectivity {
     Strips,
     /// Bit-efficient Laced Ring: 16-bit offsets, random access on the loaded file.
     LrCompact,
+    /// Zipper: the Laced Ring's slots in 3-bit symbols, random access on the loaded file.
+    Zipper,
 }
 
 /// The JSON report of `lrmesh encode --json`.
@@ -126,6 +128,7 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
             Connectivity::Edgebreaker => write::Connectivity::Edgebreaker,
             Connectivity::Strips => write::Connectivity::Strips,
             Connectivity::LrCompact => write::Connectivity::LrCompact,
+            Connectivity::Zipper => write::Connectivity::Zipper,
         },
         lr: LrOptions {
             tries: args.tries,

@@ -2,7 +2,7 @@
 //! Table 1), each structure built once.
 
 use lrmesh::edgebreaker::EdgebreakerStats;
-use lrmesh::lr::{CompactLr, CompactOptions, Lr, LrOptions, LrStats};
+use lrmesh::lr::{CompactLr, CompactOptions, Lr, LrOptions, LrStats, Zipper};
 use lrmesh::strips::{StripOptions, StripStats};
 use lrmesh::{CornerTable, TopologyReport};
 
@@ -14,8 +14,8 @@ use crate::progress;
 pub struct Args {
     #[command(flatten)]
     input: MeshInput,
-    /// Print one JSON object instead of text (keys `lr`, `lr_compact`, `edgebreaker`,
-    /// `strips`, and `hints`).
+    /// Print one JSON object instead of text (keys `lr`, `lr_compact`, `zipper`,
+    /// `edgebreaker`, `strips`, and `hints`).
     #[arg(long)]
     json: bool,
     /// Make the triangles' orientation consistent first, as `encode --orient` does.
@@ -96,10 +96,12 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
     let strips = progress::step("building strips", || {
         StripStats::from_built(&mesh, &table, &lr, &StripOptions::default())
     })?;
+    let zipper = progress::step("encoding the Zipper", || Zipper::encode(lr))?.stats();
     if args.json {
         show_json(&serde_json::json!({
             "lr": stats,
             "lr_compact": compact,
+            "zipper": zipper,
             "edgebreaker": edgebreaker,
             "strips": strips,
             "hints": hints,
@@ -107,6 +109,7 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
     } else {
         show(&stats);
         show(&compact);
+        show(&zipper);
         show(&edgebreaker);
         show(&strips);
         for hint in &hints {

@@ -150,10 +150,15 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
         t0_codes.push(word);
     }
 
+    // The ring-end bits are only read with several rings.
+    let ring_bits = |bits: &Vec<u32>| match t.ring_count() {
+        0 | 1 => Vec::new(),
+        _ => bits.clone(),
+    };
     let z = ZipperTables {
         ring_starts: t.ring_starts.clone(),
-        ring_last: t.ring_last.clone(),
-        ring_rank: t.ring_rank.clone(),
+        ring_last: ring_bits(&t.ring_last),
+        ring_rank: ring_bits(&t.ring_rank),
         planes,
         heads,
         exceptions,

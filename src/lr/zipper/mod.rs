@@ -33,7 +33,7 @@
 mod encode;
 mod tables;
 
-pub use tables::ZipperTables;
+pub use tables::{plane_array_words, ZipperTables};
 
 use super::{Lr, LrCounts, LrOptions};
 use crate::corner_table::CornerTable;

@@ -88,6 +88,15 @@ fn up_to(i: u32) -> u128 {
     u128::MAX >> (127 - i)
 }
 
+/// Words of the plane array for `m_r` ring vertices: 12 per block, 3 times what the last
+/// block's slots need for the last.
+pub fn plane_array_words(m_r: u32) -> usize {
+    let blocks = (m_r as usize).div_ceil(1 << BLOCK_SHIFT);
+    (0..blocks.min(1))
+        .map(|_| PLANE_WORDS * (blocks - 1) + 3 * plane_words(blocks - 1, m_r))
+        .sum()
+}
+
 /// Words of each plane of block `block` when there are `m_r` ring vertices: 4, or what the
 /// last block's slots need.
 #[inline(always)]

@@ -222,6 +222,7 @@ impl LrmFile {
         match self.conn() {
             Connectivity::Lr(t) => self.class_codes(t),
             Connectivity::LrCompact(t) => self.class_codes(t),
+            Connectivity::Zipper(t) => self.class_codes(t),
             _ => vec![255; self.ids.len()],
         }
     }
@@ -232,6 +233,7 @@ impl LrmFile {
         match self.conn() {
             Connectivity::Lr(t) => self.ring_places(t),
             Connectivity::LrCompact(t) => self.ring_places(t),
+            Connectivity::Zipper(t) => self.ring_places(t),
             _ => vec![f32::NAN; self.ids.len()],
         }
     }

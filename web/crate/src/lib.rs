@@ -77,11 +77,12 @@ pub(crate) fn connectivity(name: &str) -> Result<lrmesh::write::Connectivity, Js
     Ok(match name {
         "lr" => Connectivity::Lr,
         "lr-compact" => Connectivity::LrCompact,
+        "zipper" => Connectivity::Zipper,
         "edgebreaker" => Connectivity::Edgebreaker,
         "strips" => Connectivity::Strips,
         other => {
             return Err(JsError::new(&format!(
-                "unknown connectivity `{other}`: expected lr, lr-compact, edgebreaker or strips"
+                "unknown connectivity `{other}`: expected lr, lr-compact, zipper, edgebreaker or strips"
             )))
         }
     })

@@ -1,0 +1,359 @@
+//! The `ZIPR` section (connectivity kind 5): the Zipper, validated once by rules V56–V60 of
+//! `spec/FORMAT.md` (V60 brings in the LR rules every layout keeps) and read in place as
+//! [`ZipperTables`] over the buffer's little-endian words.
+
+use super::fields::Fields;
+use super::lr_rules::{check_rings, check_vertex_corners, verified_boundaries, SlotMap};
+use super::Sections;
+use crate::corner_table::NONE;
+use crate::error::{Result, Rule};
+use crate::format::layout::{ZiprHeader, LR_BOUNDARIES_ON_RING};
+use crate::format::Tag;
+use crate::ids::Corner;
+use crate::lr::zipper::{
+    plane_array_words, BLOCK_SHIFT, DELTAS, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT, HEAD_WORDS,
+    IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PLANE_WORDS, RECORD_WORDS, STATE_SHIFT, STORES_BOTH,
+    STORES_FIRST, STORES_NONE, STORES_SECOND,
+};
+use crate::lr::{LrLayout, ZipperTables, NULL, VALUE, WART};
+use crate::words::{LeWords, Words};
+
+/// Array indices in the section, in file order.
+const PLANES: usize = 3;
+const HEADS: usize = 4;
+const EXCEPTIONS: usize = 5;
+const RECORDS: usize = 6;
+const PAIRS: usize = 7;
+const T0_V: usize = 8;
+const T0_CODES: usize = 9;
+const C: usize = 11;
+
+/// The `ZIPR` section as tables and the number of canonical triangles they hold, after
+/// checking the rules that keep every operator's answer in range; with `verify`, every rule
+/// (FORMAT.md §3.5e, §5.1).
+pub(super) fn zipper_tables<'a>(
+    sections: &Sections<'a>,
+    m: u32,
+    verify: bool,
+) -> Result<(ZipperTables<LeWords<'a>>, u64)> {
+    let f = Fields::new(sections.required(Tag::ZIPR)?);
+    let b = f.bytes();
+    // [V56] counts and length.
+    f.expect_at_least(ZiprHeader::LEN, Rule(56))?;
+    let h = ZiprHeader::read(b);
+    let (m_r, rings, n0) = (h.m_r, h.rings, h.t0);
+    f.expect_vertices(0, h.m, m, Rule(56))?;
+    if h.flags & !LR_BOUNDARIES_ON_RING != 0 || h.reserved != 0 {
+        return Err(f.err(32, Rule(56), "unknown flag bits or reserved bits are set"));
+    }
+    if m >= NULL {
+        return Err(f.err(
+            0,
+            Rule(56),
+            format!("{m} vertices exceed the LR limit of {}", NULL - 1),
+        ));
+    }
+    if m_r > m || (m_r == 0) != (rings == 0) || rings as u64 > m_r as u64 / 4 {
+        return Err(f.err(
+            4,
+            Rule(56),
+            format!("{m_r} ring vertices in {rings} rings for {m} vertices (rings have at least 4 vertices)"),
+        ));
+    }
+    if 8 * m_r as u64 + 4 * n0 as u64 >= NONE as u64 {
+        return Err(f.err(12, Rule(56), "corner ids exceed 32 bits"));
+    }
+    let layout = h.layout();
+    f.expect_len(layout.as_ref().map(|l| l.len), Rule(56))?;
+    let layout = layout.expect("checked by expect_len");
+    let arrays: [_; 12] = std::array::from_fn(|i| layout.arrays[i]);
+    let words: [_; 12] = std::array::from_fn(|i| LeWords(&b[arrays[i].start..arrays[i].end()]));
+    let starts = arrays.map(|a| a.start);
+    let [ring_starts, ring_last, ring_rank, planes, heads, exceptions, records, pairs, t0_v, t0_codes, t0_explicit, c] =
+        words;
+    let word_err = |array: usize, i: usize, rule: Rule, message: String| {
+        f.err(starts[array] + 4 * i, rule, message)
+    };
+
+    // [V57] rings, as for the standard LR; the bit vectors only with several rings.
+    check_rings(
+        &ring_starts,
+        h.has_ring_bits().then_some((&ring_last, &ring_rank)),
+        m_r,
+        |array, i, message| word_err(array, i, Rule(57), message),
+    )?;
+
+    let mut tables = ZipperTables {
+        ring_starts,
+        ring_last,
+        ring_rank,
+        planes,
+        heads,
+        exceptions,
+        records,
+        pairs,
+        t0_v,
+        t0_codes,
+        t0_explicit,
+        c,
+        m_r,
+        m,
+        boundaries_on_ring: false,
+    };
+    debug_assert_eq!(tables.planes.count(), plane_array_words(m_r));
+
+    // [V58] symbols, heads, exceptions and records.
+    check_slots(&tables, &word_err)?;
+    // [V59] T0 rows.
+    let n_explicit = tables.t0_explicit.count();
+    let mut explicit = 0usize;
+    for j in 0..n0 as usize {
+        for i in 0..3 {
+            let x = tables.t0_v.at(3 * j + i);
+            if x >= m {
+                return Err(word_err(
+                    T0_V,
+                    3 * j + i,
+                    Rule(59),
+                    format!("T0 row {j}: vertex {x} out of range ({m} vertices)"),
+                ));
+            }
+        }
+        let word = tables.t0_codes.at(j);
+        if (word >> EXPLICIT_SHIFT) as usize != explicit {
+            return Err(word_err(
+                T0_CODES,
+                j,
+                Rule(59),
+                format!(
+                    "T0 row {j}: its explicit opposites start at {}, not {explicit}",
+                    word >> EXPLICIT_SHIFT
+                ),
+            ));
+        }
+        explicit += (0..3).filter(|i| word >> (2 * i) & 3 == EXPLICIT).count();
+        if explicit > n_explicit {
+            return Err(word_err(
+                T0_CODES,
+                j,
+                Rule(59),
+                format!("T0 row {j}: more explicit opposites than the {n_explicit} stored"),
+            ));
+        }
+    }
+    if explicit != n_explicit {
+        return Err(word_err(
+            10,
+            explicit,
+            Rule(59),
+            format!(
+                "{} explicit opposites not used by any T0 row",
+                n_explicit - explicit
+            ),
+        ));
+    }
+
+    // [V60] C, the stored opposites and the explicit T0 opposites are corners; then the LR
+    // rules every layout keeps (V19; V21–V23, V38 and V53 when verifying).
+    let slots = SlotMap::new(&tables);
+    let corner_ok = |x: u32| x == NONE || slots.is_corner(x);
+    let corner_arrays = [
+        (C, &tables.c),
+        (PAIRS, &tables.pairs),
+        (10, &tables.t0_explicit),
+    ];
+    for (array, words) in corner_arrays {
+        if let Some(i) = (0..words.count()).find(|&i| !corner_ok(words.at(i))) {
+            return Err(word_err(
+                array,
+                i,
+                Rule(60),
+                format!("{} is not a corner of the mesh", words.at(i)),
+            ));
+        }
+    }
+    for r in 0..tables.record_count() {
+        let word = tables.records.at(RECORD_WORDS * r + 1);
+        let state = word >> STATE_SHIFT;
+        if (state == STORES_FIRST || state == STORES_SECOND)
+            && !corner_ok((8 * m_r).wrapping_add(word & ((1 << STATE_SHIFT) - 1)))
+        {
+            return Err(word_err(
+                RECORDS,
+                RECORD_WORDS * r + 1,
+                Rule(60),
+                format!("record {r} stores an opposite that is not a T0 corner"),
+            ));
+        }
+    }
+    let corner_at = |c: Corner| {
+        if c.0 >= 8 * m_r {
+            starts[T0_V] + 12 * ((c.0 - 8 * m_r) / 4) as usize
+        } else {
+            starts[PLANES] + 4 * PLANE_WORDS * (c.0 >> (3 + BLOCK_SHIFT)) as usize
+        }
+    };
+    let vertex_at = |v: u32| {
+        if v < m_r {
+            starts[PLANES] + 4 * PLANE_WORDS * (v >> BLOCK_SHIFT) as usize
+        } else {
+            starts[C] + 4 * (v - m_r) as usize
+        }
+    };
+    slots.check_jumps(&tables, &f, corner_at)?;
+    let flag = h.flags & LR_BOUNDARIES_ON_RING != 0;
+    tables.boundaries_on_ring = flag;
+    if verify {
+        tables.boundaries_on_ring = verified_boundaries(&tables, &f, corner_at, flag, 32)?;
+        check_vertex_corners(&tables, Rule(23), |v, rule, message| {
+            f.err(vertex_at(v), rule, message)
+        })?;
+    }
+    Ok((tables, slots.triangles + n0 as u64))
+}
+
+/// [V58]: each block's head counts the exceptions and records before it; symbols of slots
+/// past the last ring vertex are 0; exception and record words have bit 31 clear and a tip
+/// below `m`; record word 1 says what it stores as FORMAT.md §3.5e allows, the pairs used
+/// once each in order; every slot's tip is below `m` (`NULL` only in a right slot of symbol
+/// 5); every exception word, record and pair is used.
+fn check_slots(
+    t: &ZipperTables<LeWords>,
+    word_err: &impl Fn(usize, usize, Rule, String) -> crate::Error,
+) -> Result<()> {
+    let (m, m_r) = (t.m, t.m_r);
+    let (mut exceptions, mut records, mut pairs) = (0usize, 0usize, 0usize);
+    let blocks = (m_r as usize).div_ceil(1 << BLOCK_SHIFT);
+    let n0 = t.t0_count() as u64;
+    for block in 0..blocks {
+        let head = |k: usize| t.heads.at(HEAD_WORDS * block + k) as usize;
+        if head(2) != exceptions || head(3) != records {
+            return Err(word_err(
+                HEADS,
+                HEAD_WORDS * block + 2,
+                Rule(58),
+                format!(
+                    "block {block} counts {} exceptions and {} records before it, not {exceptions} and {records}",
+                    head(2),
+                    head(3)
+                ),
+            ));
+        }
+        let first = (block << BLOCK_SHIFT) as u32;
+        let slot = t.slot(first, 0);
+        let used = 2 * (m_r - first).min(1 << BLOCK_SHIFT);
+        let beyond = if used == 128 { 0 } else { u128::MAX << used };
+        if slot.p.iter().any(|p| p & beyond != 0) {
+            return Err(word_err(
+                PLANES,
+                PLANE_WORDS * block,
+                Rule(58),
+                format!("block {block} has symbols past the last ring vertex"),
+            ));
+        }
+        let mut chain = [head(0) as u32, head(1) as u32];
+        for bit in 0..used {
+            let (v, side) = (first + bit / 2, (bit % 2) as usize);
+            let s = slot.symbol_at(bit);
+            let tip = match s {
+                s if s < DELTAS => {
+                    chain[side] = chain[side].wrapping_sub(s);
+                    chain[side]
+                }
+                NEXT_NEXT_OR_NULL if side == 1 => NULL,
+                EXCEPTION | IRREGULAR_SLOT => {
+                    let (array, at, count) = if s == EXCEPTION {
+                        exceptions += 1;
+                        (EXCEPTIONS, exceptions - 1, t.exceptions.count())
+                    } else {
+                        records += 1;
+                        (RECORDS, RECORD_WORDS * (records - 1), t.records.count())
+                    };
+                    let words = if s == EXCEPTION {
+                        &t.exceptions
+                    } else {
+                        &t.records
+                    };
+                    if at >= count {
+                        return Err(word_err(
+                            PLANES,
+                            PLANE_WORDS * block,
+                            Rule(58),
+                            format!(
+                                "slot ({v}, {side}) has no {} word left",
+                                if s == EXCEPTION {
+                                    "exception"
+                                } else {
+                                    "record"
+                                }
+                            ),
+                        ));
+                    }
+                    let word = words.at(at);
+                    if word & !(WART | VALUE) != 0 || word & VALUE >= m {
+                        return Err(word_err(
+                            array,
+                            at,
+                            Rule(58),
+                            format!("slot ({v}, {side}): word {word:#x} is not a WART flag and a vertex"),
+                        ));
+                    }
+                    if s == IRREGULAR_SLOT {
+                        let second = t.records.at(at + 1);
+                        let value = second & ((1 << STATE_SHIFT) - 1);
+                        let ok = match second >> STATE_SHIFT {
+                            STORES_NONE => value == 0,
+                            STORES_FIRST | STORES_SECOND => {
+                                (value as u64) < 4 * n0 && value % 4 != 3
+                            }
+                            STORES_BOTH => {
+                                pairs += 1;
+                                value as usize == pairs - 1 && pairs <= t.pairs.count() / 2
+                            }
+                            _ => false,
+                        };
+                        if !ok {
+                            return Err(word_err(
+                                RECORDS,
+                                at + 1,
+                                Rule(58),
+                                format!(
+                                    "record {}: word 1 {second:#x} stores no valid opposite",
+                                    records - 1
+                                ),
+                            ));
+                        }
+                    }
+                    chain[side] = word & VALUE;
+                    chain[side]
+                }
+                // The ring rules' own tips: v.p, v.n.n.
+                _ => 0,
+            };
+            if tip >= m && !(tip == NULL && s == NEXT_NEXT_OR_NULL) {
+                return Err(word_err(
+                    PLANES,
+                    PLANE_WORDS * block,
+                    Rule(58),
+                    format!("slot ({v}, {side}) has tip {tip:#x} ({m} vertices)"),
+                ));
+            }
+        }
+    }
+    let left = [
+        (EXCEPTIONS, exceptions, t.exceptions.count()),
+        (RECORDS, RECORD_WORDS * records, t.records.count()),
+        (PAIRS, 2 * pairs, t.pairs.count()),
+    ];
+    for (array, used, count) in left {
+        if used != count {
+            return Err(word_err(
+                array,
+                used,
+                Rule(58),
+                format!("{} words not used by any slot", count - used),
+            ));
+        }
+    }
+    Ok(())
+}
