@@ -131,11 +131,13 @@ fn listing(name: &str, bytes: &[u8]) -> String {
             name,
             z,
             format!(
-                "{n} triangles, {} ring vertices, {} T0 rows, {} exceptions, {} records, boundaries on the ring: {}",
+                "{n} triangles, {} ring vertices, {} T0 rows, {} exceptions, {} records, {} pairs, {} explicit T0 opposites, boundaries on the ring: {}",
                 z.ring_vertices(),
                 z.t0_count(),
                 z.exception_count(),
                 z.record_count(),
+                z.pair_count(),
+                z.explicit_count(),
                 z.boundaries_on_ring()
             ),
         ),

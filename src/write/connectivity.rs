@@ -248,8 +248,8 @@ pub(crate) fn zipper_header(z: &Zipper) -> ZiprHeader {
         t0: t.t0_count(),
         exceptions: t.exception_count() as u32,
         records: t.record_count() as u32,
-        pairs: (t.pairs.len() / 2) as u32,
-        explicit: t.t0_explicit.len() as u32,
+        pairs: t.pair_count() as u32,
+        explicit: t.explicit_count() as u32,
         flags: boundary_flag(t),
         reserved: 0,
     }

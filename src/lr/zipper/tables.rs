@@ -176,6 +176,16 @@ impl<W: Words> ZipperTables<W> {
         self.records.count() / RECORD_WORDS
     }
 
+    /// Number of opposite pairs (records that store both opposites).
+    pub fn pair_count(&self) -> usize {
+        self.pairs.count() / 2
+    }
+
+    /// Number of explicit T0 opposites.
+    pub fn explicit_count(&self) -> usize {
+        self.t0_explicit.count()
+    }
+
     /// Words of the parts: symbols and heads, exceptions, records, T0 rows.
     pub(crate) fn part_words(&self) -> [usize; 4] {
         [
