@@ -1,0 +1,287 @@
+//! Forged containers for the rules of `ZIPR`, the Zipper tables (§3.5e of `spec/FORMAT.md`),
+//! **[V56]**..**[V60]**. How a rule is broken and what the reader must report:
+//! `tests/common/forge.rs`.
+
+mod common;
+
+use common::forge::*;
+use lrmesh::format::layout::ZiprHeader;
+use lrmesh::format::Tag;
+use lrmesh::read::{open, open_verified, Limits, SEMANTIC_RULES};
+use lrmesh::{Error, Rule};
+
+// Array indices of `ZiprHeader::ARRAYS`.
+const PLANES: usize = 3;
+const HEADS: usize = 4;
+const EXCEPTIONS: usize = 5;
+const RECORDS: usize = 6;
+const T0_V: usize = 8;
+const T0_CODES: usize = 9;
+const EXPLICIT: usize = 10;
+const C: usize = 11;
+
+/// Byte offset within `ZIPR` of element `i` of array `index`.
+fn zipr_word(p: &[u8], index: usize, i: usize) -> usize {
+    ZiprHeader::read(p).layout().unwrap().arrays[index].at(i)
+}
+
+/// File offset of element `i` of array `index` of `ZIPR`.
+fn zipr_at(bytes: &[u8], index: usize, i: usize) -> u64 {
+    section_at(bytes, Tag::ZIPR) + zipr_word(&payload(bytes, Tag::ZIPR), index, i) as u64
+}
+
+/// Element `i` of array `index`.
+fn zipr_get(bytes: &[u8], index: usize, i: usize) -> u32 {
+    let p = payload(bytes, Tag::ZIPR);
+    get(&p, zipr_word(&p, index, i))
+}
+
+/// `bytes` with element `i` of array `index` set to `x`.
+fn zipr_set(bytes: &[u8], index: usize, i: usize, x: u32) -> Vec<u8> {
+    forge(bytes, Tag::ZIPR, |p| {
+        let at = zipr_word(p, index, i);
+        put(p, at, x)
+    })
+}
+
+/// The symbol of bit `bit` of block 0 (planes of `words` words each).
+fn symbol(bytes: &[u8], words: usize, bit: usize) -> u32 {
+    (0..3)
+        .map(|k| (zipr_get(bytes, PLANES, k * words + bit / 32) >> (bit % 32) & 1) << k)
+        .sum()
+}
+
+/// `bytes` with the symbol of bit `bit` of block 0 set to `s`.
+fn set_symbol(bytes: &[u8], words: usize, bit: usize, s: u32) -> Vec<u8> {
+    let mut out = bytes.to_vec();
+    for k in 0..3 {
+        let i = k * words + bit / 32;
+        let w = zipr_get(&out, PLANES, i) & !(1 << (bit % 32)) | ((s >> k) & 1) << (bit % 32);
+        out = zipr_set(&out, PLANES, i, w);
+    }
+    out
+}
+
+/// The rule by which the verifying reader refuses `bytes` (any level).
+fn verified_rule(bytes: &[u8]) -> Rule {
+    match open_verified(bytes, &Limits::default()) {
+        Err(Error::Format(e)) => e.rule,
+        Err(e) => panic!("expected a format error, got {e}"),
+        Ok(_) => panic!("the forged container was accepted"),
+    }
+}
+
+/// [V56] `ZIPR` counts and length. (`m < 0x3FFFFFFF` cannot break alone: `m = V`.)
+#[test]
+fn v56_zipr_counts() {
+    // m = m_r = 25, R = 1, n0 = 4, X = 7, I = 10, P = 0, E = 2.
+    let bytes = vector("torus_with_t0.zipper.lrm");
+    let at = section_at(&bytes, Tag::ZIPR);
+    let field = |f: usize, x: u32| forge(&bytes, Tag::ZIPR, |p| put(p, f, x));
+    breaks(&field(0, 24), 56, "ZIPR", at, "section MESH says 25");
+    breaks(&field(32, 2), 56, "ZIPR", at + 32, "unknown flag bits");
+    breaks(&field(36, 1), 56, "ZIPR", at + 32, "reserved bits");
+    for m_r in [26, 0, 3] {
+        breaks(&field(4, m_r), 56, "ZIPR", at + 4, "ring vertices");
+    }
+    breaks(&field(12, 0x4000_0000), 56, "ZIPR", at + 12, "32 bits");
+    for (f, x) in [(12, 5), (16, 8), (20, 9), (24, 1), (28, 3), (8, 2)] {
+        breaks(&field(f, x), 56, "ZIPR", at, "counts call for");
+    }
+    let bad = forge(&bytes, Tag::ZIPR, |p| p.push(0));
+    breaks(&bad, 56, "ZIPR", at, "counts call for");
+    let bad = forge(&bytes, Tag::ZIPR, |p| p.truncate(36));
+    breaks(&bad, 56, "ZIPR", at, "header");
+}
+
+/// [V57] `ZIPR` rings satisfy [V16], the bit vectors only with several rings.
+#[test]
+fn v57_zipr_rings() {
+    let two = vector("two_components.zipper.lrm"); // R = 2: starts [0, 4, 8], bits
+    for (i, x) in [(0, 1), (1, 3), (2, 9)] {
+        let bad = zipr_set(&two, 0, i, x);
+        breaks(&bad, 57, "ZIPR", zipr_at(&two, 0, i), "ring start");
+    }
+    let bad = zipr_set(&two, 1, 0, 0x8);
+    breaks(&bad, 57, "ZIPR", zipr_at(&two, 1, 0), "ring-end bits");
+    let bad = zipr_set(&two, 2, 0, 2);
+    breaks(&bad, 57, "ZIPR", zipr_at(&two, 2, 0), "ring ranks");
+    let one = vector("closed_tetrahedron.zipper.lrm");
+    let bad = zipr_set(&one, 0, 1, 5);
+    breaks(&bad, 57, "ZIPR", zipr_at(&one, 0, 1), "ring start 5");
+}
+
+/// [V58] Heads, symbols, exception and record words, tips.
+#[test]
+fn v58_symbols_and_heads() {
+    let bytes = vector("torus_with_t0.zipper.lrm");
+    // 25 ring vertices: 50 slots, planes of 2 words.
+    let words = 2;
+    let heads = zipr_at(&bytes, HEADS, 2);
+    breaks(
+        &zipr_set(&bytes, HEADS, 2, 1),
+        58,
+        "ZIPR",
+        heads,
+        "exceptions",
+    );
+    breaks(&zipr_set(&bytes, HEADS, 3, 1), 58, "ZIPR", heads, "records");
+    // A symbol past the last slot.
+    let w = zipr_get(&bytes, PLANES, 1);
+    let bad = zipr_set(&bytes, PLANES, 1, w | 1 << 20);
+    breaks(
+        &bad,
+        58,
+        "ZIPR",
+        zipr_at(&bytes, PLANES, 0),
+        "past the last ring vertex",
+    );
+    // Exception words: bit 31, a tip out of range.
+    let x = zipr_get(&bytes, EXCEPTIONS, 0);
+    for bad_word in [x | 1 << 31, 25, 0x3FFF_FFFF] {
+        let bad = zipr_set(&bytes, EXCEPTIONS, 0, bad_word);
+        breaks(
+            &bad,
+            58,
+            "ZIPR",
+            zipr_at(&bytes, EXCEPTIONS, 0),
+            "WART flag and a vertex",
+        );
+    }
+    // Record word 0 likewise; word 1: each state with a value it does not allow.
+    let bad = zipr_set(&bytes, RECORDS, 0, 1 << 31);
+    breaks(
+        &bad,
+        58,
+        "ZIPR",
+        zipr_at(&bytes, RECORDS, 0),
+        "WART flag and a vertex",
+    );
+    for state_word in [1, 1 << 30 | 16, 1 << 30 | 3, 3 << 30 | 1] {
+        let bad = zipr_set(&bytes, RECORDS, 1, state_word);
+        breaks(
+            &bad,
+            58,
+            "ZIPR",
+            zipr_at(&bytes, RECORDS, 1),
+            "no valid opposite",
+        );
+    }
+    // A delta tip out of range: the left anchor moved far.
+    let bad = zipr_set(&bytes, HEADS, 0, 0x7000_0000);
+    if symbol(&bytes, words, 0) < 4 {
+        breaks(&bad, 58, "ZIPR", zipr_at(&bytes, PLANES, 0), "has tip");
+    }
+    // An exception slot turned into a delta: its word is left over, or a tip breaks.
+    let exception_bit = (0..50).find(|&b| symbol(&bytes, words, b) == 6).unwrap();
+    let bad = set_symbol(&bytes, words, exception_bit, 0);
+    assert_eq!(verified_rule(&bad), Rule(58));
+    let bad = set_symbol(&bytes, words, exception_bit, 4);
+    assert_eq!(verified_rule(&bad), Rule(58));
+}
+
+/// [V59] T0 rows: vertices below `m`, explicit opposites counted in order, all used.
+#[test]
+fn v59_t0_rows() {
+    let bytes = vector("torus_with_t0.zipper.lrm"); // 4 rows, 2 explicit opposites
+    let bad = zipr_set(&bytes, T0_V, 4, 25);
+    breaks(&bad, 59, "ZIPR", zipr_at(&bytes, T0_V, 4), "out of range");
+    let codes: Vec<u32> = (0..4).map(|j| zipr_get(&bytes, T0_CODES, j)).collect();
+    let bad = zipr_set(&bytes, T0_CODES, 0, codes[0] + (1 << 6));
+    breaks(
+        &bad,
+        59,
+        "ZIPR",
+        zipr_at(&bytes, T0_CODES, 0),
+        "explicit opposites start",
+    );
+    // A row's explicit code made a boundary code: an explicit opposite is left over, or a
+    // later row's start is off.
+    let (j, i) = (0..4)
+        .flat_map(|j| (0..3).map(move |i| (j, i)))
+        .find(|&(j, i)| codes[j] >> (2 * i) & 3 == 3)
+        .unwrap();
+    let bad = zipr_set(&bytes, T0_CODES, j, codes[j] & !(1 << (2 * i)));
+    assert_eq!(format_error(&bad).rule, Rule(59));
+}
+
+/// [V60] `C`, pairs, explicit opposites and the T0 corners of records are corners; then the
+/// LR rules every layout keeps.
+#[test]
+fn v60_corners_and_lr_rules() {
+    let defective = vector("defective_torus.zipper.lrm"); // 7 off-ring vertices
+    let at = zipr_at(&defective, C, 0);
+    for x in [3, 8 * 16 + 4 * 5 + 1, 0xFFFF_FFFE] {
+        breaks(
+            &zipr_set(&defective, C, 0, x),
+            60,
+            "ZIPR",
+            at,
+            "not a corner",
+        );
+    }
+    let bytes = vector("torus_with_t0.zipper.lrm");
+    let at = zipr_at(&bytes, EXPLICIT, 0);
+    breaks(
+        &zipr_set(&bytes, EXPLICIT, 0, 7),
+        60,
+        "ZIPR",
+        at,
+        "not a corner",
+    );
+    // An exception's tip moved to another vertex: the triangles no longer fit together,
+    // which only the verifying reader sees.
+    let x = zipr_get(&bytes, EXCEPTIONS, 0);
+    let mut semantic = 0;
+    for tip in 0..25u32 {
+        let bad = zipr_set(&bytes, EXCEPTIONS, 0, x & !0x3FFF_FFFF | tip);
+        if bad == bytes {
+            continue;
+        }
+        match open_verified(&bad, &Limits::default()) {
+            Err(Error::Format(e)) => {
+                assert!(
+                    [
+                        Rule(12),
+                        Rule(19),
+                        Rule(21),
+                        Rule(22),
+                        Rule(23),
+                        Rule(38),
+                        Rule(53),
+                        Rule(58)
+                    ]
+                    .contains(&e.rule),
+                    "{e}"
+                );
+                if SEMANTIC_RULES.contains(&e.rule) {
+                    semantic += 1;
+                    // The well-formed open accepts it, and every operator answers in range.
+                    let view = open(&bad, &Limits::default()).unwrap();
+                    lrmesh::fuzz_checks::walk_in_range(&view);
+                }
+            }
+            Err(e) => panic!("{e}"),
+            Ok(_) => {}
+        }
+    }
+    assert!(semantic > 0);
+}
+
+/// The fuzz targets `container_forged` and `operators` start from Zipper containers too
+/// (kind bits 1 with bit 2 set), with holes, seams and quantized positions among them.
+#[test]
+fn the_fuzz_targets_reach_the_zipper() {
+    let zipper: Vec<u8> = (0..=255u8)
+        .filter(|&choice| {
+            let bytes = lrmesh::fuzz_checks::forged_base(choice);
+            open(&bytes, &Limits::default())
+                .unwrap()
+                .summary()
+                .connectivity
+                == "zipper"
+        })
+        .collect();
+    assert!(zipper.contains(&0x05) && zipper.contains(&0x95) && zipper.contains(&0x55));
+    assert_eq!(zipper.len(), 32);
+}
