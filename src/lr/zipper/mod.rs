@@ -222,3 +222,6 @@ impl std::fmt::Display for ZipperStats {
         )
     }
 }
+
+#[cfg(test)]
+mod tests;

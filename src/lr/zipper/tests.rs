@@ -1,0 +1,117 @@
+//! Constant time, counted: every operator reads a bounded number of words of the tables,
+//! whatever the mesh (OPERATORS.md §8.5); `v.c` too when the boundaries run along the ring
+//! (otherwise it walks the vertex's fan, OPERATORS.md §4.2, as on every LR layout).
+
+use super::{Zipper, ZipperTables};
+use crate::generate;
+use crate::ids::{Corner, Triangle, Vertex};
+use crate::lr::LrOptions;
+use crate::ops::CornerOps;
+use crate::words::Words;
+use crate::CornerTable;
+use std::cell::Cell;
+
+/// Words that count their reads.
+struct Counting<'a> {
+    words: &'a [u32],
+    reads: &'a Cell<usize>,
+}
+
+impl Words for Counting<'_> {
+    fn at(&self, i: usize) -> u32 {
+        self.reads.set(self.reads.get() + 1);
+        self.words[i]
+    }
+    fn count(&self) -> usize {
+        self.words.len()
+    }
+}
+
+/// The tables of `z` over counting words.
+fn counting<'a>(
+    z: &'a ZipperTables<Vec<u32>>,
+    reads: &'a Cell<usize>,
+) -> ZipperTables<Counting<'a>> {
+    let w = |words: &'a Vec<u32>| Counting { words, reads };
+    ZipperTables {
+        ring_starts: w(&z.ring_starts),
+        ring_last: w(&z.ring_last),
+        ring_rank: w(&z.ring_rank),
+        planes: w(&z.planes),
+        heads: w(&z.heads),
+        exceptions: w(&z.exceptions),
+        records: w(&z.records),
+        pairs: w(&z.pairs),
+        t0_v: w(&z.t0_v),
+        t0_codes: w(&z.t0_codes),
+        t0_explicit: w(&z.t0_explicit),
+        c: w(&z.c),
+        m_r: z.m_r,
+        m: z.m,
+        boundaries_on_ring: z.boundaries_on_ring,
+    }
+}
+
+/// The most words any operator reads on `mesh`'s Zipper: per operator, the largest count
+/// over every corner (vertex, for `v.c`; triangle, for `t.c`).
+fn most_reads(mesh: &crate::Mesh) -> ([usize; 10], bool) {
+    let ct = CornerTable::from_mesh(mesh).unwrap();
+    let z = Zipper::build(&ct, &LrOptions::default()).unwrap();
+    let reads = Cell::new(0);
+    let t = counting(z.tables(), &reads);
+    let corners: Vec<Corner> = z.tables().corners().collect();
+    let mut most = [0usize; 10];
+    let mut count = |k: usize, f: &dyn Fn()| {
+        reads.set(0);
+        f();
+        most[k] = most[k].max(reads.get());
+    };
+    for &c in &corners {
+        count(0, &|| drop(t.vertex(c)));
+        count(1, &|| drop(t.opposite(c)));
+        count(2, &|| drop(t.next(c)));
+        count(3, &|| drop(t.prev(c)));
+        count(4, &|| drop(t.swing(c)));
+        count(5, &|| drop(t.left(c)));
+        count(6, &|| drop(t.right(c)));
+        count(7, &|| drop(t.triangle(c)));
+    }
+    for tri in z.tables().triangles() {
+        count(8, &|| drop(t.triangle_corner(Triangle(tri.0))));
+    }
+    for v in 0..z.tables().vertex_id_bound() {
+        count(9, &|| drop(t.vertex_corner(Vertex(v))));
+    }
+    (most, z.tables().boundaries_on_ring)
+}
+
+/// The bound OPERATORS.md §8.5 states.
+const MOST_WORDS: usize = 200;
+
+#[test]
+fn every_operator_reads_a_bounded_number_of_words() {
+    let mut rng = generate::Rng::new(9);
+    let mut holes = generate::irregular_torus(50_000, 3);
+    generate::punch_holes(&mut holes, 40, &mut rng);
+    let meshes = [
+        generate::torus(3, 4),
+        generate::torus(30, 40),
+        generate::irregular_torus(2_000, 1),
+        generate::irregular_torus(200_000, 2),
+        holes,
+        generate::soup(30, 80, &mut rng),
+    ];
+    let mut largest = [0usize; 10];
+    for mesh in &meshes {
+        let (most, on_ring) = most_reads(mesh);
+        eprintln!("most words read (c.v c.o c.n c.p c.s c.l c.r c.t t.c v.c): {most:?}, boundaries on the ring: {on_ring}");
+        for (l, m) in largest
+            .iter_mut()
+            .zip(most)
+            .take(if on_ring { 10 } else { 9 })
+        {
+            *l = (*l).max(m);
+        }
+    }
+    assert!(largest.iter().all(|&m| m <= MOST_WORDS), "{largest:?}");
+}
