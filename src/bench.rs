@@ -14,7 +14,7 @@ use crate::corner_table::CornerTable;
 use crate::edgebreaker;
 use crate::error::Result;
 use crate::ids::{Triangle, Vertex};
-use crate::lr::{CompactLr, CompactOptions, Lr, LrOptions};
+use crate::lr::{CompactLr, CompactOptions, Lr, LrOptions, Zipper};
 use crate::mesh::Mesh;
 use crate::ops::{self, CornerOps, Plane};
 use crate::read;
@@ -441,6 +441,57 @@ pub fn run(
         });
         let mut r = row(
             "compact LR (view)",
+            view.summary().connectivity_bytes,
+            n,
+            Some(encode_time),
+            Some((open_time, memcpy_time(runs, &bytes))),
+            Some((&view_loops, &ct_loops)),
+        );
+        r.verify_ms = Some(ms(verify_time));
+        rows.push(r);
+    }
+
+    progress("Zipper (owned)");
+    let zipper = Zipper::build(&table, &options.lr)?;
+    let zipper_build = median_time(runs, || Zipper::build(&table, &options.lr));
+    let zipper_positions: Vec<[f32; 3]> = (0..zipper.tables().vertex_id_bound())
+        .map(|v| {
+            let input = zipper.input_vertex(Vertex(v)) as usize;
+            mesh.positions.get(input).copied().unwrap_or([0.0; 3])
+        })
+        .collect();
+    let zipper_loops = fig10_loops(zipper.tables(), &zipper_positions, runs);
+    rows.push(row(
+        "Zipper (owned)",
+        zipper.tables().stored_bytes(),
+        n,
+        Some(zipper_build),
+        None,
+        Some((&zipper_loops, &ct_loops)),
+    ));
+
+    progress("Zipper (view of the .lrm bytes)");
+    let zipper_encode = EncodeOptions {
+        connectivity: write::Connectivity::Zipper,
+        lr: options.lr,
+        ..EncodeOptions::default()
+    };
+    let bytes = write::encode(mesh, &zipper_encode)?;
+    let encode_time = median_time(runs, || write::encode(mesh, &zipper_encode));
+    let view = read::open(&bytes, &limits)?;
+    let open_time = median_time(runs, || {
+        read::open(&bytes, &limits).map(|v| v.triangle_count())
+    });
+    if let Some(tables) = view.zipper() {
+        let positions: Vec<[f32; 3]> = (0..tables.vertex_id_bound())
+            .map(|v| view.position(Vertex(v)))
+            .collect();
+        let view_loops = fig10_loops(tables, &positions, runs);
+        let verify_time = median_time(runs, || {
+            read::open_verified(&bytes, &limits).map(|v| v.triangle_count())
+        });
+        let mut r = row(
+            "Zipper (view)",
             view.summary().connectivity_bytes,
             n,
             Some(encode_time),

@@ -44,18 +44,19 @@ fn zipr_set(bytes: &[u8], index: usize, i: usize, x: u32) -> Vec<u8> {
     })
 }
 
-/// The symbol of bit `bit` of block 0 (planes of `words` words each).
-fn symbol(bytes: &[u8], words: usize, bit: usize) -> u32 {
+/// The symbol of slot `slot` (groups of 32 slots, three words each).
+fn symbol(bytes: &[u8], slot: usize) -> u32 {
     (0..3)
-        .map(|k| (zipr_get(bytes, PLANES, k * words + bit / 32) >> (bit % 32) & 1) << k)
+        .map(|k| (zipr_get(bytes, PLANES, 3 * (slot / 32) + k) >> (slot % 32) & 1) << k)
         .sum()
 }
 
-/// `bytes` with the symbol of bit `bit` of block 0 set to `s`.
-fn set_symbol(bytes: &[u8], words: usize, bit: usize, s: u32) -> Vec<u8> {
+/// `bytes` with the symbol of slot `slot` set to `s`.
+fn set_symbol(bytes: &[u8], slot: usize, s: u32) -> Vec<u8> {
+    let bit = slot;
     let mut out = bytes.to_vec();
     for k in 0..3 {
-        let i = k * words + bit / 32;
+        let i = 3 * (bit / 32) + k;
         let w = zipr_get(&out, PLANES, i) & !(1 << (bit % 32)) | ((s >> k) & 1) << (bit % 32);
         out = zipr_set(&out, PLANES, i, w);
     }
@@ -115,8 +116,7 @@ fn v57_zipr_rings() {
 #[test]
 fn v58_symbols_and_heads() {
     let bytes = vector("torus_with_t0.zipper.lrm");
-    // 25 ring vertices: 50 slots, planes of 2 words.
-    let words = 2;
+    // 25 ring vertices: 50 slots, two groups of three words.
     let heads = zipr_at(&bytes, HEADS, 2);
     breaks(
         &zipr_set(&bytes, HEADS, 2, 1),
@@ -127,8 +127,8 @@ fn v58_symbols_and_heads() {
     );
     breaks(&zipr_set(&bytes, HEADS, 3, 1), 58, "ZIPR", heads, "records");
     // A symbol past the last slot.
-    let w = zipr_get(&bytes, PLANES, 1);
-    let bad = zipr_set(&bytes, PLANES, 1, w | 1 << 20);
+    let w = zipr_get(&bytes, PLANES, 3);
+    let bad = zipr_set(&bytes, PLANES, 3, w | 1 << 20);
     breaks(
         &bad,
         58,
@@ -169,14 +169,14 @@ fn v58_symbols_and_heads() {
     }
     // A delta tip out of range: the left anchor moved far.
     let bad = zipr_set(&bytes, HEADS, 0, 0x7000_0000);
-    if symbol(&bytes, words, 0) < 4 {
+    if symbol(&bytes, 0) < 4 {
         breaks(&bad, 58, "ZIPR", zipr_at(&bytes, PLANES, 0), "has tip");
     }
     // An exception slot turned into a delta: its word is left over, or a tip breaks.
-    let exception_bit = (0..50).find(|&b| symbol(&bytes, words, b) == 6).unwrap();
-    let bad = set_symbol(&bytes, words, exception_bit, 0);
+    let exception_bit = (0..50).find(|&b| symbol(&bytes, b) == 6).unwrap();
+    let bad = set_symbol(&bytes, exception_bit, 0);
     assert_eq!(verified_rule(&bad), Rule(58));
-    let bad = set_symbol(&bytes, words, exception_bit, 4);
+    let bad = set_symbol(&bytes, exception_bit, 4);
     assert_eq!(verified_rule(&bad), Rule(58));
 }
 

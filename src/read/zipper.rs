@@ -3,7 +3,9 @@
 //! [`ZipperTables`] over the buffer's little-endian words.
 
 use super::fields::Fields;
-use super::lr_rules::{check_rings, check_vertex_corners, verified_boundaries, SlotMap};
+use super::lr_rules::{
+    check_rings, check_vertex_corners, ring_slot_flags, verified_boundaries, SlotMap,
+};
 use super::Sections;
 use crate::corner_table::NONE;
 use crate::error::{Result, Rule};
@@ -12,7 +14,7 @@ use crate::format::Tag;
 use crate::ids::Corner;
 use crate::lr::zipper::{
     plane_array_words, BLOCK_SHIFT, DELTAS, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT, HEAD_WORDS,
-    IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PLANE_WORDS, RECORD_WORDS, STATE_SHIFT, STORES_BOTH,
+    IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PLANE_WORDS, PREVIOUS, RECORD_WORDS, STATE_SHIFT, STORES_BOTH,
     STORES_FIRST, STORES_NONE, STORES_SECOND,
 };
 use crate::lr::{LrLayout, ZipperTables, NULL, VALUE, WART};
@@ -103,7 +105,7 @@ pub(super) fn zipper_tables<'a>(
     debug_assert_eq!(tables.planes.count(), plane_array_words(m_r));
 
     // [V58] symbols, heads, exceptions and records.
-    check_slots(&tables, &word_err)?;
+    let flags = check_slots(&tables, &word_err)?;
     // [V59] T0 rows.
     let n_explicit = tables.t0_explicit.count();
     let mut explicit = 0usize;
@@ -155,7 +157,7 @@ pub(super) fn zipper_tables<'a>(
 
     // [V60] C, the stored opposites and the explicit T0 opposites are corners; then the LR
     // rules every layout keeps (V19; V21–V23, V38 and V53 when verifying).
-    let slots = SlotMap::new(&tables);
+    let slots = SlotMap::with_flags(flags, m_r, n0);
     let corner_ok = |x: u32| x == NONE || slots.is_corner(x);
     let corner_arrays = [
         (C, &tables.c),
@@ -216,12 +218,14 @@ pub(super) fn zipper_tables<'a>(
 /// past the last ring vertex are 0; exception and record words have bit 31 clear and a tip
 /// below `m`; record word 1 says what it stores as FORMAT.md §3.5e allows, the pairs used
 /// once each in order; every slot's tip is below `m` (`NULL` only in a right slot of symbol
-/// 5); every exception word, record and pair is used.
+/// 5); every exception word, record and pair is used. Returns the flags of every slot for
+/// [`SlotMap`], found in the same pass.
 fn check_slots(
     t: &ZipperTables<LeWords>,
     word_err: &impl Fn(usize, usize, Rule, String) -> crate::Error,
-) -> Result<()> {
+) -> Result<Vec<u8>> {
     let (m, m_r) = (t.m, t.m_r);
+    let mut flags = Vec::with_capacity(2 * m_r as usize);
     let (mut exceptions, mut records, mut pairs) = (0usize, 0usize, 0usize);
     let blocks = (m_r as usize).div_ceil(1 << BLOCK_SHIFT);
     let n0 = t.t0_count() as u64;
@@ -240,7 +244,7 @@ fn check_slots(
             ));
         }
         let first = (block << BLOCK_SHIFT) as u32;
-        let slot = t.slot(first, 0);
+        let slot = t.block_planes(block);
         let used = 2 * (m_r - first).min(1 << BLOCK_SHIFT);
         let beyond = if used == 128 { 0 } else { u128::MAX << used };
         if slot.p.iter().any(|p| p & beyond != 0) {
@@ -255,6 +259,7 @@ fn check_slots(
         for bit in 0..used {
             let (v, side) = (first + bit / 2, (bit % 2) as usize);
             let s = slot.symbol_at(bit);
+            let mut wart = 0;
             let tip = match s {
                 s if s < DELTAS => {
                     chain[side] = chain[side].wrapping_sub(s);
@@ -324,11 +329,13 @@ fn check_slots(
                             ));
                         }
                     }
+                    wart = (word & WART != 0) as u32;
                     chain[side] = word & VALUE;
                     chain[side]
                 }
                 // The ring rules' own tips: v.p, v.n.n.
-                _ => 0,
+                PREVIOUS => t.ring_prev(v),
+                _ => t.ring_next(t.ring_next(v)),
             };
             if tip >= m && !(tip == NULL && s == NEXT_NEXT_OR_NULL) {
                 return Err(word_err(
@@ -338,6 +345,8 @@ fn check_slots(
                     format!("slot ({v}, {side}) has tip {tip:#x} ({m} vertices)"),
                 ));
             }
+            let nn = t.ring_next(t.ring_next(v));
+            flags.push(ring_slot_flags(tip, wart, (s == IRREGULAR_SLOT) as u32, nn));
         }
     }
     let left = [
@@ -355,5 +364,5 @@ fn check_slots(
             ));
         }
     }
-    Ok(())
+    Ok(flags)
 }

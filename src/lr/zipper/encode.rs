@@ -2,10 +2,10 @@
 //! way the decoder reads it back, then every slot and T0 opposite is decoded and compared
 //! with the standard LR's.
 
-use super::tables::{plane_words, ZipperTables};
+use super::tables::{plane_array_words, ZipperTables};
 use super::{
     BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT, HEAD_WORDS,
-    IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PLANE_WORDS, PREVIOUS, RECORD_WORDS,
+    IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PREVIOUS, RECORD_WORDS,
     STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
 };
 use crate::corner_table::NONE;
@@ -81,7 +81,7 @@ fn stored_opposites(
 pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
     let m_r = t.m_r;
     let blocks = (m_r as usize).div_ceil(1 << BLOCK_SHIFT);
-    let mut planes = Vec::with_capacity(blocks * PLANE_WORDS);
+    let mut planes = Vec::with_capacity(plane_array_words(m_r));
     let mut heads = vec![0u32; blocks * HEAD_WORDS];
     let (mut exceptions, mut records, mut pairs) = (Vec::new(), Vec::new(), Vec::new());
     // Each side's chain starts at its first slot's tip (any value would do: the decoder
@@ -115,9 +115,10 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
                 }
             }
         }
-        let words = plane_words(block, m_r);
-        for plane in p {
-            planes.extend((0..words).map(|q| (plane >> (32 * q)) as u32));
+        // Group by group (32 slots), the three planes' words of each.
+        let groups = (plane_array_words(m_r) / 3 - 4 * block).min(4);
+        for q in 0..groups {
+            planes.extend(p.map(|plane| (plane >> (32 * q)) as u32));
         }
     }
 

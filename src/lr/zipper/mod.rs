@@ -52,8 +52,8 @@ pub const NEXT_NEXT_OR_NULL: u32 = 5;
 pub const EXCEPTION: u32 = 6;
 /// Symbol: the slot is irregular, its record in the record list.
 pub const IRREGULAR_SLOT: u32 = 7;
-/// Words per block in the plane array: three planes of 128 bits, low word first (the last
-/// block's planes have only the words its slots need).
+/// Words per block in the plane array: four groups of 32 slots, each the three planes' words
+/// (the last block has only the groups its slots need).
 pub const PLANE_WORDS: usize = 12;
 /// Words per block in the head array: the left and right anchors, the exceptions and the
 /// records before the block.

@@ -3,7 +3,7 @@
 
 use super::{
     BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, DELTAS, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT,
-    HEAD_WORDS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PLANE_WORDS, PREVIOUS,
+    HEAD_WORDS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PREVIOUS,
     RECORD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_SECOND,
 };
 use crate::corner_table::NONE;
@@ -63,12 +63,6 @@ impl Slot {
             as u32
     }
 
-    /// This slot's symbol.
-    #[inline(always)]
-    pub fn symbol(&self) -> u32 {
-        self.symbol_at(self.bit)
-    }
-
     /// The block's exception slots, one bit each.
     #[inline(always)]
     pub fn exceptions(&self) -> u128 {
@@ -88,40 +82,54 @@ fn up_to(i: u32) -> u128 {
     u128::MAX >> (127 - i)
 }
 
-/// Words of the plane array for `m_r` ring vertices: 12 per block, 3 times what the last
-/// block's slots need for the last.
+/// Words of the plane array for `m_r` ring vertices: three per group of 32 slots (16 ring
+/// vertices), 12 per block.
 pub fn plane_array_words(m_r: u32) -> usize {
-    let blocks = (m_r as usize).div_ceil(1 << BLOCK_SHIFT);
-    (0..blocks.min(1))
-        .map(|_| PLANE_WORDS * (blocks - 1) + 3 * plane_words(blocks - 1, m_r))
-        .sum()
-}
-
-/// Words of each plane of block `block` when there are `m_r` ring vertices: 4, or what the
-/// last block's slots need.
-#[inline(always)]
-pub(crate) fn plane_words(block: usize, m_r: u32) -> usize {
-    let slots = 2 * (m_r as usize - (block << BLOCK_SHIFT)).min(1 << BLOCK_SHIFT);
-    slots.div_ceil(32)
+    3 * (2 * m_r as usize).div_ceil(32)
 }
 
 impl<W: Words> ZipperTables<W> {
-    /// The block of slot `(v, side)`.
+    /// The three plane words of group `g` (slots `32g ..`, counted over the whole ring).
+    #[inline(always)]
+    fn group(&self, g: usize) -> [u32; 3] {
+        [0, 1, 2].map(|k| self.planes.at(3 * g + k))
+    }
+
+    /// The symbol of slot `(v, side)`, from its group's three words alone.
+    #[inline(always)]
+    pub(crate) fn symbol(&self, v: u32, side: usize) -> u32 {
+        let slot = 2 * v as usize + side;
+        let g = self.group(slot / 32);
+        let b = slot % 32;
+        (g[0] >> b) & 1 | ((g[1] >> b) & 1) << 1 | ((g[2] >> b) & 1) << 2
+    }
+
+    /// The planes of slot `(v, side)`'s block up to the slot's group (the bits after it
+    /// read as 0: nothing below reads them).
     #[inline(always)]
     pub(crate) fn slot(&self, v: u32, side: usize) -> Slot {
         let block = (v >> BLOCK_SHIFT) as usize;
-        let at = block * PLANE_WORDS;
-        let words = plane_words(block, self.m_r);
-        let word = |k: usize| {
-            (0..words).fold(0u128, |p, q| {
-                p | (self.planes.at(at + k * words + q) as u128) << (32 * q)
-            })
-        };
-        Slot {
-            block,
-            bit: 2 * (v & ((1 << BLOCK_SHIFT) - 1)) + side as u32,
-            p: [word(0), word(1), word(2)],
+        let bit = 2 * (v & ((1 << BLOCK_SHIFT) - 1)) + side as u32;
+        self.planes_until(block, bit / 32, bit)
+    }
+
+    /// The planes of block `block`'s groups `0..=last`, for slot bit `bit`.
+    #[inline(always)]
+    pub(crate) fn planes_until(&self, block: usize, last: u32, bit: u32) -> Slot {
+        let mut p = [0u128; 3];
+        for q in 0..=last as usize {
+            let g = self.group(4 * block + q);
+            for k in 0..3 {
+                p[k] |= (g[k] as u128) << (32 * q);
+            }
         }
+        Slot { block, bit, p }
+    }
+
+    /// Every plane of block `block` (its last group: the block's slots, or the ring's).
+    pub(crate) fn block_planes(&self, block: usize) -> Slot {
+        let groups = plane_array_words(self.m_r) / 3 - 4 * block;
+        self.planes_until(block, groups.min(4) as u32 - 1, 0)
     }
 
     #[inline(always)]
@@ -241,30 +249,35 @@ impl<W: Words> LrLayout for ZipperTables<W> {
     }
     #[inline(always)]
     fn tip(&self, v: u32, side: usize) -> u32 {
-        let slot = self.slot(v, side);
-        match slot.symbol() {
-            s if s < DELTAS => self.chain(&slot),
+        match self.symbol(v, side) {
+            s if s < DELTAS => self.chain(&self.slot(v, side)),
             PREVIOUS => self.ring_prev(v),
             NEXT_NEXT_OR_NULL if side == LEFT => self.ring_next(self.ring_next(v)),
             NEXT_NEXT_OR_NULL => NULL,
-            _ => self.stored_word(&slot, slot.bit) & VALUE,
+            _ => {
+                let slot = self.slot(v, side);
+                self.stored_word(&slot, slot.bit) & VALUE
+            }
         }
     }
     #[inline(always)]
     fn wart(&self, v: u32, side: usize) -> bool {
+        if self.symbol(v, side) < EXCEPTION {
+            return false;
+        }
         let slot = self.slot(v, side);
-        slot.symbol() >= EXCEPTION && self.stored_word(&slot, slot.bit) & WART != 0
+        self.stored_word(&slot, slot.bit) & WART != 0
     }
     #[inline(always)]
     fn irregular(&self, v: u32, side: usize) -> bool {
-        self.slot(v, side).symbol() == IRREGULAR_SLOT
+        self.symbol(v, side) == IRREGULAR_SLOT
     }
     #[inline(always)]
     fn stored_opposite(&self, v: u32, side: usize, second: usize) -> Option<u32> {
-        let slot = self.slot(v, side);
-        if slot.symbol() != IRREGULAR_SLOT {
+        if self.symbol(v, side) != IRREGULAR_SLOT {
             return None;
         }
+        let slot = self.slot(v, side);
         let r = self.record_index(&slot, slot.bit);
         let word = self.records.at(RECORD_WORDS * r + 1);
         let value = word & ((1 << STATE_SHIFT) - 1);
