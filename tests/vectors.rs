@@ -19,7 +19,7 @@ use lrmesh::write::{encode, Connectivity, EncodeOptions, Orient};
 use lrmesh::CornerOps;
 
 /// Sources, read as OFF unless named in [`OBJ_VECTORS`].
-const VECTORS: [&str; 9] = [
+const VECTORS: [&str; 10] = [
     "closed_tetrahedron",
     "boundary_hedra_open",
     "two_components",
@@ -39,6 +39,9 @@ const VECTORS: [&str; 9] = [
     // A cube with reversed triangles and per-corner texture coordinates, encoded with its
     // orientation repaired (section FLIP, FORMAT.md §3.11).
     "misoriented_cube",
+    // CGAL's genus-3 torus (corpus/meshes/3torus.off): Zipper records that store both
+    // opposites (the pair list).
+    "genus3_torus",
 ];
 
 /// The sources written as OBJ (per-corner attributes, parts).
