@@ -17,8 +17,9 @@
 //!   slots next to T0 triangles), or a pair of opposites stored whole.
 //!
 //! An exception's or record's tip becomes the chain value. The slots of 64 ring vertices
-//! (slot `2i + side` of the block) lie in three 128-bit planes, one bit of each symbol per
-//! plane, so that a tip is found in constant time with bit operations: the last exception or
+//! (slot `2i + side` of the block) make three 128-bit planes, one bit of each symbol per
+//! plane, stored as groups of 32 slots whose three plane words are adjacent (a symbol is one
+//! group's read), so that a tip is found in constant time with bit operations: the last exception or
 //! record of its side in the block at or before it (or the block's **anchor** for that side,
 //! the chain value before the block) minus the sum of the delta symbols in between, a few
 //! population counts. Each block's head holds the two anchors and the exceptions and records
