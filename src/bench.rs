@@ -306,6 +306,57 @@ fn row(
     }
 }
 
+/// The input position of each vertex of `ops` (`input_vertex` maps it back; the origin for
+/// an id with no input vertex).
+fn input_positions(
+    mesh: &Mesh,
+    ops: &impl CornerOps,
+    input_vertex: impl Fn(Vertex) -> u32,
+) -> Vec<[f32; 3]> {
+    (0..ops.vertex_id_bound())
+        .map(|v| {
+            let input = input_vertex(Vertex(v)) as usize;
+            mesh.positions.get(input).copied().unwrap_or([0.0; 3])
+        })
+        .collect()
+}
+
+/// The row of a view of a container's bytes, for a mesh of `n` triangles: `timed` holds the
+/// bytes, the time that encoded them and the runs per step; `tables` are the view's own (the
+/// loops run on them, not through [`read::Connectivity`]'s dispatch). Times opening,
+/// verifying and a memcpy of the same bytes.
+fn view_row<T: CornerOps>(
+    name: &'static str,
+    timed: (&[u8], Duration, usize),
+    view: &read::Container,
+    tables: &T,
+    ct_loops: &LoopTimes,
+    n: usize,
+) -> BenchRow {
+    let (bytes, encode_time, runs) = timed;
+    let limits = read::Limits::default();
+    let open_time = median_time(runs, || {
+        read::open(bytes, &limits).map(|v| v.triangle_count())
+    });
+    let positions: Vec<[f32; 3]> = (0..tables.vertex_id_bound())
+        .map(|v| view.position(Vertex(v)))
+        .collect();
+    let view_loops = fig10_loops(tables, &positions, runs);
+    let verify_time = median_time(runs, || {
+        read::open_verified(bytes, &limits).map(|v| v.triangle_count())
+    });
+    let mut r = row(
+        name,
+        view.summary().connectivity_bytes,
+        n,
+        Some(encode_time),
+        Some((open_time, memcpy_time(runs, bytes))),
+        Some((&view_loops, ct_loops)),
+    );
+    r.verify_ms = Some(ms(verify_time));
+    r
+}
+
 /// Builds every representation of `mesh` and times it, reporting each step's name to
 /// `progress` before it starts.
 ///
@@ -348,12 +399,7 @@ pub fn run(
     progress("LR (owned)");
     let lr = Lr::build(&table, &options.lr)?;
     let lr_build = median_time(runs, || Lr::build(&table, &options.lr));
-    let lr_positions: Vec<[f32; 3]> = (0..lr.vertex_id_bound())
-        .map(|v| {
-            let input = lr.input_vertex(Vertex(v)) as usize;
-            mesh.positions.get(input).copied().unwrap_or([0.0; 3])
-        })
-        .collect();
+    let lr_positions = input_positions(mesh, &lr, |v| lr.input_vertex(v));
     let lr_loops = fig10_loops(&lr, &lr_positions, runs);
     rows.push(row(
         "LR (owned)",
@@ -364,36 +410,24 @@ pub fn run(
         Some((&lr_loops, &ct_loops)),
     ));
 
-    progress("LR (view of the .lrm bytes)");
-    let encode_options = EncodeOptions {
-        lr: options.lr,
-        ..EncodeOptions::default()
-    };
-    let bytes = write::encode(mesh, &encode_options)?;
-    let encode_time = median_time(runs, || write::encode(mesh, &encode_options));
     let limits = read::Limits::default();
+    let encoded = |connectivity| {
+        let encode_options = EncodeOptions {
+            connectivity,
+            lr: options.lr,
+            ..EncodeOptions::default()
+        };
+        let bytes = write::encode(mesh, &encode_options)?;
+        let encode_time = median_time(runs, || write::encode(mesh, &encode_options));
+        Ok::<_, crate::Error>((bytes, encode_time))
+    };
+
+    progress("LR (view of the .lrm bytes)");
+    let (bytes, encode_time) = encoded(write::Connectivity::Lr)?;
     let view = read::open(&bytes, &limits)?;
-    let open_time = median_time(runs, || {
-        read::open(&bytes, &limits).map(|v| v.triangle_count())
-    });
     if let Some(tables) = view.lr() {
-        let positions: Vec<[f32; 3]> = (0..tables.vertex_id_bound())
-            .map(|v| view.position(Vertex(v)))
-            .collect();
-        let view_loops = fig10_loops(tables, &positions, runs);
-        let verify_time = median_time(runs, || {
-            read::open_verified(&bytes, &limits).map(|v| v.triangle_count())
-        });
-        let mut r = row(
-            "LR (view)",
-            view.summary().connectivity_bytes,
-            n,
-            Some(encode_time),
-            Some((open_time, memcpy_time(runs, &bytes))),
-            Some((&view_loops, &ct_loops)),
-        );
-        r.verify_ms = Some(ms(verify_time));
-        rows.push(r);
+        let timed = (&bytes[..], encode_time, runs);
+        rows.push(view_row("LR (view)", timed, &view, tables, &ct_loops, n));
     }
 
     progress("compact LR (owned)");
@@ -403,12 +437,7 @@ pub fn run(
     };
     let compact = CompactLr::build(&table, &compact_options)?;
     let compact_build = median_time(runs, || CompactLr::build(&table, &compact_options));
-    let compact_positions: Vec<[f32; 3]> = (0..compact.tables().vertex_id_bound())
-        .map(|v| {
-            let input = compact.input_vertex(Vertex(v)) as usize;
-            mesh.positions.get(input).copied().unwrap_or([0.0; 3])
-        })
-        .collect();
+    let compact_positions = input_positions(mesh, compact.tables(), |v| compact.input_vertex(v));
     let compact_loops = fig10_loops(compact.tables(), &compact_positions, runs);
     rows.push(row(
         "compact LR (owned)",
@@ -420,46 +449,24 @@ pub fn run(
     ));
 
     progress("compact LR (view of the .lrm bytes)");
-    let compact_encode = EncodeOptions {
-        connectivity: write::Connectivity::LrCompact,
-        lr: options.lr,
-        ..EncodeOptions::default()
-    };
-    let bytes = write::encode(mesh, &compact_encode)?;
-    let encode_time = median_time(runs, || write::encode(mesh, &compact_encode));
+    let (bytes, encode_time) = encoded(write::Connectivity::LrCompact)?;
     let view = read::open(&bytes, &limits)?;
-    let open_time = median_time(runs, || {
-        read::open(&bytes, &limits).map(|v| v.triangle_count())
-    });
     if let Some(tables) = view.lr_compact() {
-        let positions: Vec<[f32; 3]> = (0..tables.vertex_id_bound())
-            .map(|v| view.position(Vertex(v)))
-            .collect();
-        let view_loops = fig10_loops(tables, &positions, runs);
-        let verify_time = median_time(runs, || {
-            read::open_verified(&bytes, &limits).map(|v| v.triangle_count())
-        });
-        let mut r = row(
+        let timed = (&bytes[..], encode_time, runs);
+        rows.push(view_row(
             "compact LR (view)",
-            view.summary().connectivity_bytes,
+            timed,
+            &view,
+            tables,
+            &ct_loops,
             n,
-            Some(encode_time),
-            Some((open_time, memcpy_time(runs, &bytes))),
-            Some((&view_loops, &ct_loops)),
-        );
-        r.verify_ms = Some(ms(verify_time));
-        rows.push(r);
+        ));
     }
 
     progress("Zipper (owned)");
     let zipper = Zipper::build(&table, &options.lr)?;
     let zipper_build = median_time(runs, || Zipper::build(&table, &options.lr));
-    let zipper_positions: Vec<[f32; 3]> = (0..zipper.tables().vertex_id_bound())
-        .map(|v| {
-            let input = zipper.input_vertex(Vertex(v)) as usize;
-            mesh.positions.get(input).copied().unwrap_or([0.0; 3])
-        })
-        .collect();
+    let zipper_positions = input_positions(mesh, zipper.tables(), |v| zipper.input_vertex(v));
     let zipper_loops = fig10_loops(zipper.tables(), &zipper_positions, runs);
     rows.push(row(
         "Zipper (owned)",
@@ -471,35 +478,18 @@ pub fn run(
     ));
 
     progress("Zipper (view of the .lrm bytes)");
-    let zipper_encode = EncodeOptions {
-        connectivity: write::Connectivity::Zipper,
-        lr: options.lr,
-        ..EncodeOptions::default()
-    };
-    let bytes = write::encode(mesh, &zipper_encode)?;
-    let encode_time = median_time(runs, || write::encode(mesh, &zipper_encode));
+    let (bytes, encode_time) = encoded(write::Connectivity::Zipper)?;
     let view = read::open(&bytes, &limits)?;
-    let open_time = median_time(runs, || {
-        read::open(&bytes, &limits).map(|v| v.triangle_count())
-    });
     if let Some(tables) = view.zipper() {
-        let positions: Vec<[f32; 3]> = (0..tables.vertex_id_bound())
-            .map(|v| view.position(Vertex(v)))
-            .collect();
-        let view_loops = fig10_loops(tables, &positions, runs);
-        let verify_time = median_time(runs, || {
-            read::open_verified(&bytes, &limits).map(|v| v.triangle_count())
-        });
-        let mut r = row(
+        let timed = (&bytes[..], encode_time, runs);
+        rows.push(view_row(
             "Zipper (view)",
-            view.summary().connectivity_bytes,
+            timed,
+            &view,
+            tables,
+            &ct_loops,
             n,
-            Some(encode_time),
-            Some((open_time, memcpy_time(runs, &bytes))),
-            Some((&view_loops, &ct_loops)),
-        );
-        r.verify_ms = Some(ms(verify_time));
-        rows.push(r);
+        ));
     }
 
     progress("Edgebreaker");
