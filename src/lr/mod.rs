@@ -187,21 +187,38 @@ impl Lr {
     /// The input triangles, in input order, from the LR alone. Each comes back with the same
     /// orientation, possibly rotated (an LR triangle starts at its ring vertex).
     pub fn input_triangles(&self) -> Vec<[u32; 3]> {
-        let mut out = vec![[0u32; 3]; self.input_triangle_lr.len()];
-        for t in self.triangles() {
-            let [a, b, c] = self.triangle_vertices(t).map(|v| self.input_vertex(v));
-            out[self.input_triangle(t) as usize] = [a, b, c];
-        }
-        for &(input, tri) in &self.kept_aside {
-            out[input as usize] = tri;
-        }
-        out
+        input_triangles_of(
+            self,
+            self.input_triangle_lr.len(),
+            &self.kept_aside,
+            |v| self.input_vertex(v),
+            |t| self.input_triangle(t),
+        )
     }
 
     /// The tables, which implement the corner operators.
     pub fn tables(&self) -> &LrTables<Vec<u32>> {
         &self.tables
     }
+}
+
+/// The input triangles of any LR layout, in input order (`count` of them): each canonical
+/// triangle of `tables` through the maps back to the input, then the kept-aside ones.
+pub(crate) fn input_triangles_of<T: CornerOps>(
+    tables: &T,
+    count: usize,
+    kept: &[(u32, [u32; 3])],
+    input_vertex: impl Fn(Vertex) -> u32,
+    input_triangle: impl Fn(Triangle) -> u32,
+) -> Vec<[u32; 3]> {
+    let mut out = vec![[0u32; 3]; count];
+    for t in tables.triangles() {
+        out[input_triangle(t) as usize] = tables.triangle_vertices(t).map(&input_vertex);
+    }
+    for &(input, tri) in kept {
+        out[input as usize] = tri;
+    }
+    out
 }
 
 /// The class of a canonical LR triangle, as coloured in the LR paper's Fig. 1 and Fig. 7.

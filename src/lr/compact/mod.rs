@@ -38,7 +38,6 @@ pub use tables::CompactTables;
 
 use super::{Lr, LrCounts, LrOptions};
 use crate::ids::{Triangle, Vertex};
-use crate::ops::CornerOps;
 use tables::stored_bytes;
 
 /// Ring vertices per block: `v >> BLOCK_SHIFT` is the block of `v`.
@@ -161,18 +160,13 @@ impl CompactLr {
     /// same orientation, possibly rotated).
     pub fn input_triangles(&self) -> Vec<[u32; 3]> {
         let kept = self.kept_aside();
-        let mut out = vec![[0u32; 3]; self.counts().triangles as usize + kept.len()];
-        for t in self.tables.triangles() {
-            let [a, b, c] = self
-                .tables
-                .triangle_vertices(t)
-                .map(|v| self.input_vertex(v));
-            out[self.input_triangle(t) as usize] = [a, b, c];
-        }
-        for &(input, tri) in kept {
-            out[input as usize] = tri;
-        }
-        out
+        super::input_triangles_of(
+            &self.tables,
+            self.counts().triangles as usize + kept.len(),
+            kept,
+            |v| self.input_vertex(v),
+            |t| self.input_triangle(t),
+        )
     }
 
     /// The statistics of `lrmesh stats` (JSON object `lr_compact`).

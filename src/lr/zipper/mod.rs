@@ -138,20 +138,14 @@ impl Zipper {
     /// The input triangles, in input order, from the Zipper tables alone (each with the same
     /// orientation, possibly rotated).
     pub fn input_triangles(&self) -> Vec<[u32; 3]> {
-        use crate::ops::CornerOps;
         let kept = self.kept_aside();
-        let mut out = vec![[0u32; 3]; self.counts().triangles as usize + kept.len()];
-        for t in self.tables.triangles() {
-            let [a, b, c] = self
-                .tables
-                .triangle_vertices(t)
-                .map(|v| self.input_vertex(v));
-            out[self.input_triangle(t) as usize] = [a, b, c];
-        }
-        for &(input, tri) in kept {
-            out[input as usize] = tri;
-        }
-        out
+        super::input_triangles_of(
+            &self.tables,
+            self.counts().triangles as usize + kept.len(),
+            kept,
+            |v| self.input_vertex(v),
+            |t| self.input_triangle(t),
+        )
     }
 
     /// The statistics of `lrmesh stats` (JSON object `zipper`).
