@@ -57,27 +57,27 @@ pub(crate) struct Slot {
 
 impl Slot {
     /// The symbol of the slot at `bit`.
-    #[inline(always)]
+    #[inline]
     pub fn symbol_at(&self, bit: u32) -> u32 {
         ((self.p[0] >> bit) & 1 | ((self.p[1] >> bit) & 1) << 1 | ((self.p[2] >> bit) & 1) << 2)
             as u32
     }
 
     /// The block's exception slots, one bit each.
-    #[inline(always)]
+    #[inline]
     pub fn exceptions(&self) -> u128 {
         !self.p[0] & self.p[1] & self.p[2]
     }
 
     /// The block's irregular slots.
-    #[inline(always)]
+    #[inline]
     pub fn irregular(&self) -> u128 {
         self.p[0] & self.p[1] & self.p[2]
     }
 }
 
 /// Bits `0..=i`.
-#[inline(always)]
+#[inline]
 fn up_to(i: u32) -> u128 {
     u128::MAX >> (127 - i)
 }
@@ -90,13 +90,13 @@ pub fn plane_array_words(m_r: u32) -> usize {
 
 impl<W: Words> ZipperTables<W> {
     /// The three plane words of group `g` (slots `32g ..`, counted over the whole ring).
-    #[inline(always)]
+    #[inline]
     fn group(&self, g: usize) -> [u32; 3] {
         [0, 1, 2].map(|k| self.planes.at(3 * g + k))
     }
 
     /// The symbol of slot `(v, side)`, from its group's three words alone.
-    #[inline(always)]
+    #[inline]
     pub(crate) fn symbol(&self, v: u32, side: usize) -> u32 {
         let slot = 2 * v as usize + side;
         let g = self.group(slot / 32);
@@ -106,7 +106,7 @@ impl<W: Words> ZipperTables<W> {
 
     /// The planes of slot `(v, side)`'s block up to the slot's group (the bits after it
     /// read as 0: nothing below reads them).
-    #[inline(always)]
+    #[inline]
     pub(crate) fn slot(&self, v: u32, side: usize) -> Slot {
         let block = (v >> BLOCK_SHIFT) as usize;
         let bit = 2 * (v & ((1 << BLOCK_SHIFT) - 1)) + side as u32;
@@ -114,7 +114,7 @@ impl<W: Words> ZipperTables<W> {
     }
 
     /// The planes of block `block`'s groups `0..=last`, for slot bit `bit`.
-    #[inline(always)]
+    #[inline]
     pub(crate) fn planes_until(&self, block: usize, last: u32, bit: u32) -> Slot {
         let mut p = [0u128; 3];
         for q in 0..=last as usize {
@@ -132,13 +132,13 @@ impl<W: Words> ZipperTables<W> {
         self.planes_until(block, groups.min(4) as u32 - 1, 0)
     }
 
-    #[inline(always)]
+    #[inline]
     fn head(&self, block: usize, k: usize) -> u32 {
         self.heads.at(block * HEAD_WORDS + k)
     }
 
     /// The word holding the WART flag and the tip of exception or irregular slot `bit`.
-    #[inline(always)]
+    #[inline]
     fn stored_word(&self, slot: &Slot, bit: u32) -> u32 {
         let below = (1u128 << bit) - 1;
         if slot.symbol_at(bit) == EXCEPTION {
@@ -151,14 +151,14 @@ impl<W: Words> ZipperTables<W> {
     }
 
     /// Index of the record of irregular slot `bit`.
-    #[inline(always)]
+    #[inline]
     fn record_index(&self, slot: &Slot, bit: u32) -> usize {
         let below = (1u128 << bit) - 1;
         self.head(slot.block, 3) as usize + (slot.irregular() & below).count_ones() as usize
     }
 
     /// The tip of a delta slot: its side's chain value after it.
-    #[inline(always)]
+    #[inline]
     fn chain(&self, slot: &Slot) -> u32 {
         let side = (slot.bit & 1) as usize;
         let same = (LEFT_SLOTS << side) & up_to(slot.bit);
@@ -219,35 +219,35 @@ impl<W: Words> ZipperTables<W> {
 }
 
 impl<W: Words> LrLayout for ZipperTables<W> {
-    #[inline(always)]
+    #[inline]
     fn ring_vertices(&self) -> u32 {
         self.m_r
     }
-    #[inline(always)]
+    #[inline]
     fn vertex_count(&self) -> u32 {
         self.m
     }
-    #[inline(always)]
+    #[inline]
     fn t0_count(&self) -> u32 {
         self.t0_codes.count() as u32
     }
-    #[inline(always)]
+    #[inline]
     fn ring_count(&self) -> usize {
         self.ring_starts.count().saturating_sub(1)
     }
-    #[inline(always)]
+    #[inline]
     fn ring_start(&self, ring: usize) -> u32 {
         self.ring_starts.at(ring)
     }
-    #[inline(always)]
+    #[inline]
     fn ring_last_word(&self, i: usize) -> u32 {
         self.ring_last.at(i)
     }
-    #[inline(always)]
+    #[inline]
     fn ring_rank_word(&self, i: usize) -> u32 {
         self.ring_rank.at(i)
     }
-    #[inline(always)]
+    #[inline]
     fn tip(&self, v: u32, side: usize) -> u32 {
         match self.symbol(v, side) {
             s if s < DELTAS => self.chain(&self.slot(v, side)),
@@ -260,7 +260,7 @@ impl<W: Words> LrLayout for ZipperTables<W> {
             }
         }
     }
-    #[inline(always)]
+    #[inline]
     fn wart(&self, v: u32, side: usize) -> bool {
         if self.symbol(v, side) < EXCEPTION {
             return false;
@@ -268,11 +268,11 @@ impl<W: Words> LrLayout for ZipperTables<W> {
         let slot = self.slot(v, side);
         self.stored_word(&slot, slot.bit) & WART != 0
     }
-    #[inline(always)]
+    #[inline]
     fn irregular(&self, v: u32, side: usize) -> bool {
         self.symbol(v, side) == IRREGULAR_SLOT
     }
-    #[inline(always)]
+    #[inline]
     fn stored_opposite(&self, v: u32, side: usize, second: usize) -> Option<u32> {
         if self.symbol(v, side) != IRREGULAR_SLOT {
             return None;
@@ -287,11 +287,11 @@ impl<W: Words> LrLayout for ZipperTables<W> {
             _ => None,
         }
     }
-    #[inline(always)]
+    #[inline]
     fn t0_vertex(&self, k: u32) -> u32 {
         self.t0_v.at(k as usize)
     }
-    #[inline(always)]
+    #[inline]
     fn t0_opposite(&self, k: u32) -> u32 {
         let (j, i) = (k / 3, k % 3);
         let word = self.t0_codes.at(j as usize);
@@ -309,11 +309,11 @@ impl<W: Words> LrLayout for ZipperTables<W> {
             }
         }
     }
-    #[inline(always)]
+    #[inline]
     fn boundaries_on_ring(&self) -> bool {
         self.boundaries_on_ring
     }
-    #[inline(always)]
+    #[inline]
     fn isolated_corner(&self, i: u32) -> u32 {
         self.c.at(i as usize)
     }
