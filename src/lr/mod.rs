@@ -44,6 +44,7 @@
 mod build;
 mod closed;
 pub mod compact;
+mod leaf_moves;
 mod ring;
 mod tables;
 pub mod zipper;

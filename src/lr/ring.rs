@@ -1,6 +1,7 @@
 //! The rings of an LR construction: on the corner table closed over its boundaries
 //! ([`Closed`]), RING-EXPANDER (or HYBRID-RING-EXPANDER) per component from the best of
-//! several seed corners, and the walk that numbers the ring vertices. [`Prepared`] holds
+//! several seed corners, improved by leaf moves ([`super::leaf_moves`]), and the walk that
+//! numbers the ring vertices. [`Prepared`] holds
 //! what every ring of one corner table shares, so that the bit-efficient LR can compare
 //! periods without closing the mesh again.
 
@@ -191,27 +192,31 @@ fn ascending(ids: &mut [u32]) {
     }
 }
 
-/// Ring edges of real triangle `t`: edges to a neighbour on the other side of the ring.
-fn ring_edges(mesh: &Closed, tm: &Marks, t: u32) -> usize {
+/// Ring edges of triangle `t`: edges to a neighbour on the other side of the ring.
+pub(super) fn ring_edges(mesh: &Closed, tm: &Marks, t: u32) -> usize {
     let inside = tm.get(t as usize);
     (0..3)
         .filter(|&i| tm.get(mesh.o(3 * t + i) as usize / 3) != inside)
         .count()
 }
 
-/// T0 triangles of a component that no wart can take: those without a T2 neighbour. (A T2 has
-/// one edge off the ring, so no two T0s compete for it, and every other T0 finds a wart.)
+/// Whether triangle `t` is a real T0 that no wart can take: no ring edge and no real T2
+/// neighbour. (A T2 has one edge off the ring, so no two T0s compete for it, and every
+/// other T0 finds a wart.)
+pub(super) fn t0_without_wart(mesh: &Closed, tm: &Marks, t: u32) -> bool {
+    t < mesh.real_triangles
+        && ring_edges(mesh, tm, t) == 0
+        && (0..3).all(|i| {
+            let u = mesh.o(3 * t + i) / 3;
+            u >= mesh.real_triangles || ring_edges(mesh, tm, u) != 2
+        })
+}
+
+/// T0 triangles of a component that no wart can take.
 fn t0_after_warts(mesh: &Closed, comp: &Component, tm: &Marks) -> usize {
     comp.triangles
         .iter()
-        .filter(|&&t| {
-            t < mesh.real_triangles
-                && ring_edges(mesh, tm, t) == 0
-                && (0..3).all(|i| {
-                    let u = mesh.o(3 * t + i) / 3;
-                    u >= mesh.real_triangles || ring_edges(mesh, tm, u) != 2
-                })
-        })
+        .filter(|&&t| t0_without_wart(mesh, tm, t))
         .count()
 }
 
@@ -257,6 +262,11 @@ impl<'a> Prepared<'a> {
         Ok(Prepared { mesh, components })
     }
 
+    /// Triangles of the closed mesh, dummies included.
+    pub(super) fn triangle_count(&self) -> usize {
+        self.mesh.triangle_count()
+    }
+
     /// The closed mesh, the components freed.
     pub(super) fn into_closed(self) -> Closed<'a> {
         self.mesh
@@ -273,26 +283,29 @@ impl<'a> Prepared<'a> {
         rings.ring_corner.reserve_exact(vertices);
         for comp in &self.components {
             expansion.best_of(comp, options.tries);
+            super::leaf_moves::improve(&self.mesh, &comp.triangles, &mut expansion.main.tm);
             rings.walk(&self.mesh, comp, &expansion.main.tm);
         }
         rings
     }
 
-    /// A guess, from one ring expansion per component (the first seed corner of
-    /// [`Prepared::rings`]), of what the rings of `period` cost a bit-efficient LR beyond its
+    /// A guess, from the best of `tries` ring expansions per component (the first seed
+    /// corners of [`Prepared::rings`]) and their leaf moves, of what the rings of `period` cost a bit-efficient LR beyond its
     /// pair words, in bytes: a T0 row and the records of its irregular neighbours for each
     /// T0 triangle no wart takes, and a record for each pair with a tip too far for a plain
     /// pair's offset (only a component of more vertices than that offset reaches has one, so
     /// only such a component's ring is walked). The factors are least-squares fits of the
     /// built sizes over the shared meshes and periods; `lr::compact` ranks periods by it.
-    pub(super) fn compact_estimate(&self, period: u32, seed: u64) -> u64 {
+    pub(super) fn compact_estimate(&self, period: u32, seed: u64, tries: u32) -> u64 {
         let mesh = &self.mesh;
         let mut expansion = Expansion::new(mesh, period, seed, 1);
         let mut rings = Rings::new(mesh);
         let mut bytes = 0;
         for comp in &self.components {
-            let t0 = expansion.best_of(comp, 1);
-            bytes += T0_BYTES * t0 as u64;
+            expansion.best_of(comp, tries);
+            let tm = &mut expansion.main.tm;
+            super::leaf_moves::improve(mesh, &comp.triangles, tm);
+            bytes += T0_BYTES * t0_after_warts(mesh, comp, tm) as u64;
             if comp.vertices.len() as i64 > SHORT_MAX {
                 let first = rings.ring_corner.len();
                 rings.walk(mesh, comp, &expansion.main.tm);
@@ -310,30 +323,30 @@ const T0_BYTES: u64 = 26;
 
 /// One bit per vertex or triangle: the marks of a ring expansion, eight times smaller than
 /// `bool`s, so that more of them stay in cache while the expander walks a large mesh.
-struct Marks(Vec<u64>);
+pub(super) struct Marks(Vec<u64>);
 
 impl Marks {
-    fn new(n: usize) -> Marks {
+    pub(super) fn new(n: usize) -> Marks {
         Marks(vec![0; n.div_ceil(64)])
     }
 
     #[inline(always)]
-    fn get(&self, i: usize) -> bool {
+    pub(super) fn get(&self, i: usize) -> bool {
         self.0[i >> 6] >> (i & 63) & 1 != 0
     }
 
     #[inline(always)]
-    fn set(&mut self, i: usize) {
+    pub(super) fn set(&mut self, i: usize) {
         self.0[i >> 6] |= 1 << (i & 63);
     }
 
     #[inline(always)]
-    fn clear(&mut self, i: usize) {
+    pub(super) fn clear(&mut self, i: usize) {
         self.0[i >> 6] &= !(1 << (i & 63));
     }
 
     #[inline(always)]
-    fn put(&mut self, i: usize, on: bool) {
+    pub(super) fn put(&mut self, i: usize, on: bool) {
         if on {
             self.set(i)
         } else {

@@ -16,7 +16,7 @@ use crate::error::{Error, Result};
 use crate::ids::Corner;
 use crate::lr::ring::Prepared;
 use crate::lr::tables::{LrLayout, LrTables, LEFT, NULL, RIGHT};
-use crate::lr::Lr;
+use crate::lr::{Lr, LrOptions};
 use crate::ops::CornerOps;
 use crate::words::{Units, Words};
 
@@ -28,7 +28,7 @@ impl CompactLr {
     /// [`Error::Unsupported`] when the mesh exceeds the LR's id space.
     pub fn build(ct: &CornerTable, options: &CompactOptions) -> Result<CompactLr> {
         let prepared = Prepared::new(ct)?;
-        let period = choose_period(&prepared, &options.periods, options.lr.seed);
+        let period = choose_period(&prepared, &options.periods, &options.lr);
         let rings = prepared.rings(period, &options.lr);
         let lr = Lr::from_rings(ct, prepared, rings, &options.lr)?;
         CompactLr::encode(lr, period)
@@ -408,17 +408,26 @@ fn short_corner(c: u32, ring_reference: u32, t0_reference: u32, m_r: u32) -> Opt
         .then_some(tag | (d as u16 & 0x7FFF))
 }
 
-/// The period of `periods` (0 when there is none) whose rings, from one seed corner per
-/// component, have the smallest [`compact_estimate`](Prepared::compact_estimate):
-/// one ring expansion per period instead of a whole LR built and encoded per period, whose
-/// sizes it ranks closely enough (README, bit-efficient LR).
-fn choose_period(prepared: &Prepared, periods: &[u32], seed: u64) -> u32 {
+/// The period of `periods` (0 when there is none) whose rings have the smallest
+/// [`compact_estimate`](Prepared::compact_estimate): one ring expansion per period instead of
+/// a whole LR built and encoded per period, whose sizes it ranks closely enough (README,
+/// bit-efficient LR). The expansions take one seed corner per component, or on a mesh of
+/// fewer than [`SMALL_MESH`] triangles all of the build's tries, so that there the rings
+/// are the ones built (one T0 triangle weighs much on a small mesh, and the tries cost little).
+/// Triangles below which the period estimate expands every try ([`choose_period`]).
+const SMALL_MESH: usize = 1 << 14;
+
+fn choose_period(prepared: &Prepared, periods: &[u32], lr: &LrOptions) -> u32 {
     let mut best = (u64::MAX, periods.first().copied().unwrap_or(0));
     if periods.len() < 2 {
         return best.1;
     }
+    let tries = match prepared.triangle_count() < SMALL_MESH {
+        true => lr.tries,
+        false => 1,
+    };
     for &period in periods {
-        let estimate = prepared.compact_estimate(period, seed);
+        let estimate = prepared.compact_estimate(period, lr.seed, tries);
         if estimate < best.0 {
             best = (estimate, period);
         }
