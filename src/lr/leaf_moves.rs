@@ -22,44 +22,65 @@ const PASSES: usize = 6;
 /// The most fan triangles tried around one tip: a tip of higher valence keeps the rest.
 const MAX_FAN: usize = 64;
 
-/// Applies leaf moves to the invaded triangles `tm` of a component whose triangles are
-/// `triangles`. The visited vertices do not change: every move keeps its tip on the ring.
-pub(super) fn improve(mesh: &Closed, triangles: &[u32], tm: &mut Marks) {
-    let mut leaves = Vec::new();
-    let mut scratch = Vec::with_capacity(32);
-    // Triangles near a kept move: after the first strict and sideways passes, only leaves
-    // among them can have a move that the previous pass did not try.
-    let mut near = Marks::new(mesh.triangle_count());
-    let mut near_next = Marks::new(mesh.triangle_count());
-    for pass in 0..PASSES {
-        let sideways = pass % 2 == 1;
-        let everywhere = pass == 0 || sideways;
-        leaves.clear();
-        leaves.extend(triangles.iter().copied().filter(|&t| {
-            t < mesh.real_triangles
-                && tm.get(t as usize)
-                && (everywhere || near.get(t as usize))
-                && ring_edges(mesh, tm, t) == 2
-        }));
-        let mut improved = false;
-        for &a in &leaves {
-            // An earlier move this pass may have taken the leaf away or grown it.
-            if !tm.get(a as usize) || ring_edges(mesh, tm, a) != 2 {
-                continue;
-            }
-            if let Some(lowered) = try_leaf(mesh, tm, a, sideways, &mut scratch) {
-                improved |= lowered;
-                for &t in &scratch {
-                    near_next.set(t as usize);
+/// The working memory of the leaf moves, made once per mesh and reused by its components
+/// (a component's marks are cleared when it is done), so that a mesh of many small
+/// components costs no more than one of their size.
+pub(super) struct LeafMoves {
+    leaves: Vec<u32>,
+    set: Vec<u32>,
+    /// Triangles near a move kept in this pass or the previous one: after the first strict
+    /// and sideways passes, only leaves among them can have a move not tried before.
+    near: Marks,
+    near_next: Marks,
+}
+
+impl LeafMoves {
+    pub(super) fn new(mesh: &Closed) -> LeafMoves {
+        LeafMoves {
+            leaves: Vec::new(),
+            set: Vec::with_capacity(32),
+            near: Marks::new(mesh.triangle_count()),
+            near_next: Marks::new(mesh.triangle_count()),
+        }
+    }
+
+    /// Applies leaf moves to the invaded triangles `tm` of a component whose triangles are
+    /// `triangles`. The visited vertices do not change: every move keeps its tip on the ring.
+    pub(super) fn improve(&mut self, mesh: &Closed, triangles: &[u32], tm: &mut Marks) {
+        for pass in 0..PASSES {
+            let sideways = pass % 2 == 1;
+            let everywhere = pass == 0 || sideways;
+            let near = &self.near;
+            self.leaves.clear();
+            self.leaves.extend(triangles.iter().copied().filter(|&t| {
+                t < mesh.real_triangles
+                    && tm.get(t as usize)
+                    && (everywhere || near.get(t as usize))
+                    && ring_edges(mesh, tm, t) == 2
+            }));
+            let mut improved = false;
+            for &a in &self.leaves {
+                // An earlier move this pass may have taken the leaf away or grown it.
+                if !tm.get(a as usize) || ring_edges(mesh, tm, a) != 2 {
+                    continue;
+                }
+                if let Some(lowered) = try_leaf(mesh, tm, a, sideways, &mut self.set) {
+                    improved |= lowered;
+                    for &t in &self.set {
+                        self.near_next.set(t as usize);
+                    }
                 }
             }
-        }
-        if !improved && !sideways {
-            break;
+            for &t in triangles {
+                self.near.put(t as usize, self.near_next.get(t as usize));
+                self.near_next.clear(t as usize);
+            }
+            if !improved && !sideways {
+                break;
+            }
         }
         for &t in triangles {
-            near.put(t as usize, near_next.get(t as usize));
-            near_next.clear(t as usize);
+            self.near.clear(t as usize);
         }
     }
 }

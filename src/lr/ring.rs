@@ -7,6 +7,7 @@
 
 use super::closed::{next3, prev3, Closed};
 use super::compact::SHORT_MAX;
+use super::leaf_moves::LeafMoves;
 use super::{LrOptions, NULL};
 use crate::corner_table::{CornerTable, NONE};
 use crate::error::{Error, Result};
@@ -281,9 +282,10 @@ impl<'a> Prepared<'a> {
         // At most one ring vertex per real vertex: no slack from growing by doubling.
         let vertices = self.components.iter().map(|c| c.vertices.len()).sum();
         rings.ring_corner.reserve_exact(vertices);
+        let mut moves = LeafMoves::new(&self.mesh);
         for comp in &self.components {
             expansion.best_of(comp, options.tries);
-            super::leaf_moves::improve(&self.mesh, &comp.triangles, &mut expansion.main.tm);
+            moves.improve(&self.mesh, &comp.triangles, &mut expansion.main.tm);
             rings.walk(&self.mesh, comp, &expansion.main.tm);
         }
         rings
@@ -300,11 +302,12 @@ impl<'a> Prepared<'a> {
         let mesh = &self.mesh;
         let mut expansion = Expansion::new(mesh, period, seed, 1);
         let mut rings = Rings::new(mesh);
+        let mut moves = LeafMoves::new(mesh);
         let mut bytes = 0;
         for comp in &self.components {
             expansion.best_of(comp, tries);
             let tm = &mut expansion.main.tm;
-            super::leaf_moves::improve(mesh, &comp.triangles, tm);
+            moves.improve(mesh, &comp.triangles, tm);
             bytes += T0_BYTES * t0_after_warts(mesh, comp, tm) as u64;
             if comp.vertices.len() as i64 > SHORT_MAX {
                 let first = rings.ring_corner.len();
