@@ -98,7 +98,7 @@ fn v16_rings() {
 /// `NULL` in a right entry without WART; every record used.
 #[test]
 fn v17_lr_entries() {
-    let bytes = vector("torus_with_t0.lrm"); // m = m_r = 25, 10 records
+    let bytes = vector("torus_with_t0.lrm"); // m = m_r = 25, 9 records
     let p = payload(&bytes, Tag::LRTB);
     let h = LrtbHeader::read(&p);
     let entry = |slot: usize| get(&p, lrtb_word(&p, LR, slot));
@@ -148,8 +148,8 @@ fn v17_record_tip_located_at_the_record() {
 /// [V18] `VO_V` entries are below `m`.
 #[test]
 fn v18_t0_vertices() {
-    let bytes = vector("torus_with_t0.lrm"); // 4 T0 triangles
-    for (i, x) in [(0, 25), (5, 26), (11, NONE)] {
+    let bytes = vector("torus_with_t0.lrm"); // 3 T0 triangles
+    for (i, x) in [(0, 25), (5, 26), (8, NONE)] {
         let bad = forge(&bytes, Tag::LRTB, |p| set_lrtb(p, VO_V, i, x));
         breaks(&bad, 18, "LRTB", lrtb_at(&bytes, "VO_V", i), "out of range");
     }
@@ -253,11 +253,12 @@ fn v22_opposites() {
     );
     // o.o ≠ c: a T0 corner's stored opposite replaced by a later corner that is not paired
     // with it; the pair is checked from the smaller corner, the T0 corner.
-    let t0 = vector("torus_with_t0.lrm");
+    let t0 = vector("genus3_torus.lrm"); // T0 triangles next to one another
     let view = open(&t0, &Limits::default()).unwrap();
     let lr = view.lr().unwrap();
     let first_t0 = 8 * lr.ring_vertices();
-    let (k, c) = (0..12u32)
+    let t0_corners = 3 * (lr.triangle_id_bound() - 2 * lr.ring_vertices());
+    let (k, c) = (0..t0_corners)
         .map(|k| (k, Corner(first_t0 + k / 3 * 4 + k % 3)))
         .find(|&(_, c)| lr.opposite(c).is_some_and(|o| o.0 > c.0))
         .unwrap();
@@ -274,7 +275,7 @@ fn v22_opposites() {
         "do not face each other",
     );
     // o.o = c but not across one edge: a T0 corner made its own opposite.
-    let (k, c) = (0..12u32)
+    let (k, c) = (0..t0_corners)
         .map(|k| (k, Corner(first_t0 + k / 3 * 4 + k % 3)))
         .find(|&(_, c)| lr.opposite(c).is_none_or(|o| o.0 > c.0))
         .unwrap();
@@ -290,11 +291,12 @@ fn v22_opposites() {
 fn v22_opposite_not_pointing_back_is_located() {
     // A T0 corner c whose opposite o is larger, given NONE: o.o = c no longer points back,
     // and o is the corner at fault.
-    let bytes = vector("torus_with_t0.lrm");
+    let bytes = vector("genus3_torus.lrm"); // T0 triangles next to one another
     let view = open(&bytes, &Limits::default()).unwrap();
     let lr = view.lr().unwrap();
     let m_r = lr.ring_vertices();
-    let (k, o) = (0..12u32)
+    let t0_corners = 3 * (lr.triangle_id_bound() - 2 * m_r);
+    let (k, o) = (0..t0_corners)
         .map(|k| (k, Corner(8 * m_r + k / 3 * 4 + k % 3)))
         .find_map(|(k, c)| lr.opposite(c).filter(|o| o.0 > c.0).map(|o| (k, o)))
         .unwrap();

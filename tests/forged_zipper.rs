@@ -75,7 +75,7 @@ fn verified_rule(bytes: &[u8]) -> Rule {
 /// [V56] `ZIPR` counts and length. (`m < 0x3FFFFFFF` cannot break alone: `m = V`.)
 #[test]
 fn v56_zipr_counts() {
-    // m = m_r = 25, R = 1, n0 = 4, X = 7, I = 10, P = 0, E = 2.
+    // m = m_r = 25, R = 1, n0 = 3, X = 11, I = 9, P = 0, E = 0.
     let bytes = vector("torus_with_t0.zipper.lrm");
     let at = section_at(&bytes, Tag::ZIPR);
     let field = |f: usize, x: u32| forge(&bytes, Tag::ZIPR, |p| put(p, f, x));
@@ -86,7 +86,7 @@ fn v56_zipr_counts() {
         breaks(&field(4, m_r), 56, "ZIPR", at + 4, "ring vertices");
     }
     breaks(&field(12, 0x4000_0000), 56, "ZIPR", at + 12, "32 bits");
-    for (f, x) in [(12, 5), (16, 8), (20, 9), (24, 1), (28, 3), (8, 2)] {
+    for (f, x) in [(12, 5), (16, 8), (20, 8), (24, 1), (28, 3), (8, 2)] {
         breaks(&field(f, x), 56, "ZIPR", at, "counts call for");
     }
     let bad = forge(&bytes, Tag::ZIPR, |p| p.push(0));
@@ -183,10 +183,10 @@ fn v58_symbols_and_heads() {
 /// [V59] T0 rows: vertices below `m`, explicit opposites counted in order, all used.
 #[test]
 fn v59_t0_rows() {
-    let bytes = vector("torus_with_t0.zipper.lrm"); // 4 rows, 2 explicit opposites
-    let bad = zipr_set(&bytes, T0_V, 4, 25);
+    let bytes = vector("genus3_torus.zipper.lrm"); // m = 19, 10 rows, 14 explicit opposites
+    let bad = zipr_set(&bytes, T0_V, 4, 19);
     breaks(&bad, 59, "ZIPR", zipr_at(&bytes, T0_V, 4), "out of range");
-    let codes: Vec<u32> = (0..4).map(|j| zipr_get(&bytes, T0_CODES, j)).collect();
+    let codes: Vec<u32> = (0..10).map(|j| zipr_get(&bytes, T0_CODES, j)).collect();
     let bad = zipr_set(&bytes, T0_CODES, 0, codes[0] + (1 << 6));
     breaks(
         &bad,
@@ -197,7 +197,7 @@ fn v59_t0_rows() {
     );
     // A row's explicit code made a boundary code: an explicit opposite is left over, or a
     // later row's start is off.
-    let (j, i) = (0..4)
+    let (j, i) = (0..10)
         .flat_map(|j| (0..3).map(move |i| (j, i)))
         .find(|&(j, i)| codes[j] >> (2 * i) & 3 == 3)
         .unwrap();
@@ -220,7 +220,7 @@ fn v60_corners_and_lr_rules() {
             "not a corner",
         );
     }
-    let bytes = vector("torus_with_t0.zipper.lrm");
+    let bytes = vector("genus3_torus.zipper.lrm"); // m = 19, explicit T0 opposites
     let at = zipr_at(&bytes, EXPLICIT, 0);
     breaks(
         &zipr_set(&bytes, EXPLICIT, 0, 7),
@@ -233,7 +233,7 @@ fn v60_corners_and_lr_rules() {
     // which only the verifying reader sees.
     let x = zipr_get(&bytes, EXCEPTIONS, 0);
     let mut semantic = 0;
-    for tip in 0..25u32 {
+    for tip in 0..19u32 {
         let bad = zipr_set(&bytes, EXCEPTIONS, 0, x & !0x3FFF_FFFF | tip);
         if bad == bytes {
             continue;

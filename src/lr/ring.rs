@@ -291,24 +291,31 @@ impl<'a> Prepared<'a> {
         rings
     }
 
-    /// A guess, from the best of `tries` ring expansions per component (the first seed
-    /// corners of [`Prepared::rings`]) and their leaf moves, of what the rings of `period` cost a bit-efficient LR beyond its
-    /// pair words, in bytes: a T0 row and the records of its irregular neighbours for each
-    /// T0 triangle no wart takes, and a record for each pair with a tip too far for a plain
-    /// pair's offset (only a component of more vertices than that offset reaches has one, so
-    /// only such a component's ring is walked). The factors are least-squares fits of the
-    /// built sizes over the shared meshes and periods; `lr::compact` ranks periods by it.
-    pub(super) fn compact_estimate(&self, period: u32, seed: u64, tries: u32) -> u64 {
+    /// A guess of what the rings of `period` cost a bit-efficient LR beyond its pair words,
+    /// in bytes: a T0 row and the records of its irregular neighbours for each T0 triangle no
+    /// wart takes, and a record for each pair with a tip too far for a plain pair's offset
+    /// (only a component of more vertices than that offset reaches has one, so only such a
+    /// component's ring is walked). The rings are one expansion per component (the first
+    /// seed corner of [`Prepared::rings`]), or with `exact` the rings the build makes (all
+    /// its tries and the leaf moves). The factors are least-squares fits of the built sizes
+    /// over the shared meshes and periods; `lr::compact` ranks periods by it.
+    pub(super) fn compact_estimate(&self, period: u32, options: &LrOptions, exact: bool) -> u64 {
         let mesh = &self.mesh;
-        let mut expansion = Expansion::new(mesh, period, seed, 1);
+        let mut expansion = Expansion::new(mesh, period, options.seed, 1);
         let mut rings = Rings::new(mesh);
-        let mut moves = LeafMoves::new(mesh);
+        let mut moves = exact.then(|| LeafMoves::new(mesh));
         let mut bytes = 0;
         for comp in &self.components {
-            expansion.best_of(comp, tries);
-            let tm = &mut expansion.main.tm;
-            moves.improve(mesh, &comp.triangles, tm);
-            bytes += T0_BYTES * t0_after_warts(mesh, comp, tm) as u64;
+            let t0 = match moves.as_mut() {
+                Some(moves) => {
+                    expansion.best_of(comp, options.tries);
+                    let tm = &mut expansion.main.tm;
+                    moves.improve(mesh, &comp.triangles, tm);
+                    t0_after_warts(mesh, comp, tm)
+                }
+                None => expansion.best_of(comp, 1),
+            };
+            bytes += T0_BYTES * t0 as u64;
             if comp.vertices.len() as i64 > SHORT_MAX {
                 let first = rings.ring_corner.len();
                 rings.walk(mesh, comp, &expansion.main.tm);

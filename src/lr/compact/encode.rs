@@ -408,26 +408,24 @@ fn short_corner(c: u32, ring_reference: u32, t0_reference: u32, m_r: u32) -> Opt
         .then_some(tag | (d as u16 & 0x7FFF))
 }
 
+/// Triangles below which the period estimate takes the rings the build makes
+/// ([`choose_period`]).
+const SMALL_MESH: usize = 1 << 14;
+
 /// The period of `periods` (0 when there is none) whose rings have the smallest
 /// [`compact_estimate`](Prepared::compact_estimate): one ring expansion per period instead of
 /// a whole LR built and encoded per period, whose sizes it ranks closely enough (README,
-/// bit-efficient LR). The expansions take one seed corner per component, or on a mesh of
-/// fewer than [`SMALL_MESH`] triangles all of the build's tries, so that there the rings
-/// are the ones built (one T0 triangle weighs much on a small mesh, and the tries cost little).
-/// Triangles below which the period estimate expands every try ([`choose_period`]).
-const SMALL_MESH: usize = 1 << 14;
-
+/// bit-efficient LR). On a mesh of fewer than [`SMALL_MESH`] triangles the estimate takes
+/// the rings the build makes (all its tries and the leaf moves): one T0 triangle weighs much
+/// on a small mesh, and the work is small.
 fn choose_period(prepared: &Prepared, periods: &[u32], lr: &LrOptions) -> u32 {
     let mut best = (u64::MAX, periods.first().copied().unwrap_or(0));
     if periods.len() < 2 {
         return best.1;
     }
-    let tries = match prepared.triangle_count() < SMALL_MESH {
-        true => lr.tries,
-        false => 1,
-    };
+    let exact = prepared.triangle_count() < SMALL_MESH;
     for &period in periods {
-        let estimate = prepared.compact_estimate(period, lr.seed, tries);
+        let estimate = prepared.compact_estimate(period, lr, exact);
         if estimate < best.0 {
             best = (estimate, period);
         }
