@@ -612,4 +612,56 @@ mod tests {
             assert_eq!(ids, expected, "{count} ids below {range}");
         }
     }
+
+    /// Leaf moves never raise a component's count of T0 triangles without a wart, lower it
+    /// on irregular meshes, and keep the ring through the same vertices, each once.
+    #[cfg(feature = "generate")]
+    #[test]
+    fn leaf_moves_lower_costly_t0s_and_keep_the_ring_vertices() {
+        use crate::generate::{surface, SurfaceOptions};
+        for (genus, holes, components) in [(0, 0, 1), (2, 12, 3), (1, 40, 2)] {
+            let mesh = surface(&SurfaceOptions {
+                triangles: 12_000,
+                genus,
+                holes,
+                components,
+                irregular: true,
+                seed: 5,
+            });
+            let ct = CornerTable::from_mesh(&mesh).unwrap();
+            let prepared = Prepared::new(&ct).unwrap();
+            let closed = &prepared.mesh;
+            let mut expansion = Expansion::new(closed, 0, 1, 1);
+            let mut moves = LeafMoves::new(closed);
+            let ring_vertices = |tm: &Marks, comp: &Component| {
+                let mut rings = Rings::new(closed);
+                rings.walk(closed, comp, tm);
+                let mut v: Vec<u32> = rings
+                    .ring_corner
+                    .iter()
+                    .map(|&c| closed.v(prev3(c)))
+                    .collect();
+                let len = v.len();
+                v.sort_unstable();
+                v.dedup();
+                assert_eq!(v.len(), len, "a vertex twice on the ring");
+                v
+            };
+            let (mut before, mut after) = (0, 0);
+            for comp in &prepared.components {
+                expansion.best_of(comp, 4);
+                let tm = &mut expansion.main.tm;
+                let (count, vertices) = (t0_after_warts(closed, comp, tm), ring_vertices(tm, comp));
+                moves.improve(closed, &comp.triangles, tm);
+                let moved = t0_after_warts(closed, comp, tm);
+                assert!(moved <= count, "{moved} after the moves, {count} before");
+                assert_eq!(ring_vertices(tm, comp), vertices);
+                (before, after) = (before + count, after + moved);
+            }
+            assert!(
+                after < before,
+                "genus {genus}: {after} of {before} T0s left"
+            );
+        }
+    }
 }
