@@ -5,7 +5,7 @@
 //! table, so a mesh whose triangles were written with mixed orientations (a shuffled CAD
 //! export) falls apart into many small pieces, and every representation grows: the LR of
 //! corpus `blobby-shuffled` stores 3.9 references per triangle where the same surface,
-//! oriented, needs 1.4.
+//! oriented, needs 1.1.
 
 use super::Mesh;
 
