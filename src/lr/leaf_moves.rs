@@ -15,7 +15,7 @@
 //! bunny00 1.188 → 1.066).
 
 use super::closed::{next3, Closed};
-use super::ring::{ring_edges, Marks};
+use super::ring::{ring_edges, t0_without_wart, Marks};
 
 /// Passes over the leaves: strict, sideways, strict, … Each pair of passes still gains a
 /// little (ten: bunny00 1.055 instead of 1.066); six keep the build within twice RING-EXPANDER's.
@@ -178,13 +178,10 @@ impl LeafMoves {
         self.set.iter().filter(|&&t| self.costly(mesh, t)).count()
     }
 
-    /// Whether `t` is a real T0 without a wart: no ring edge, no real T2 neighbour.
+    /// Whether `t` is a real T0 without a wart, from the cached ring edges.
     #[inline]
     fn costly(&self, mesh: &Closed, t: u32) -> bool {
-        let t2 = |u: u32| u < mesh.real_triangles && self.edges[u as usize] == 2;
-        t < mesh.real_triangles
-            && self.edges[t as usize] == 0
-            && !(0..3).any(|i| t2(mesh.o(3 * t + i) / 3))
+        t0_without_wart(mesh, t, |u| self.edges[u as usize] as usize)
     }
 }
 

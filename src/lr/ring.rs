@@ -1,9 +1,8 @@
 //! The rings of an LR construction: on the corner table closed over its boundaries
 //! ([`Closed`]), RING-EXPANDER (or HYBRID-RING-EXPANDER) per component from the best of
 //! several seed corners, improved by leaf moves ([`super::leaf_moves`]), and the walk that
-//! numbers the ring vertices. [`Prepared`] holds
-//! what every ring of one corner table shares, so that the bit-efficient LR can compare
-//! periods without closing the mesh again.
+//! numbers the ring vertices. [`Prepared`] holds what every ring of one corner table shares,
+//! so that the bit-efficient LR can compare periods without closing the mesh again.
 
 use super::closed::{next3, prev3, Closed};
 use super::compact::SHORT_MAX;
@@ -201,23 +200,21 @@ pub(super) fn ring_edges(mesh: &Closed, tm: &Marks, t: u32) -> usize {
         .count()
 }
 
-/// Whether triangle `t` is a real T0 that no wart can take: no ring edge and no real T2
-/// neighbour. (A T2 has one edge off the ring, so no two T0s compete for it, and every
-/// other T0 finds a wart.)
-pub(super) fn t0_without_wart(mesh: &Closed, tm: &Marks, t: u32) -> bool {
-    t < mesh.real_triangles
-        && ring_edges(mesh, tm, t) == 0
-        && (0..3).all(|i| {
-            let u = mesh.o(3 * t + i) / 3;
-            u >= mesh.real_triangles || ring_edges(mesh, tm, u) != 2
-        })
+/// Whether triangle `t` is a real T0 that no wart can take, given the ring edges of any
+/// triangle: no ring edge and no real T2 neighbour. (A T2 has one edge off the ring, so no
+/// two T0s compete for it, and every other T0 finds a wart.)
+#[inline]
+pub(super) fn t0_without_wart(mesh: &Closed, t: u32, edges: impl Fn(u32) -> usize) -> bool {
+    let t2 = |u: u32| u < mesh.real_triangles && edges(u) == 2;
+    t < mesh.real_triangles && edges(t) == 0 && !(0..3).any(|i| t2(mesh.o(3 * t + i) / 3))
 }
 
 /// T0 triangles of a component that no wart can take.
 fn t0_after_warts(mesh: &Closed, comp: &Component, tm: &Marks) -> usize {
+    let edges = |u| ring_edges(mesh, tm, u);
     comp.triangles
         .iter()
-        .filter(|&&t| t0_without_wart(mesh, tm, t))
+        .filter(|&&t| t0_without_wart(mesh, t, edges))
         .count()
 }
 
