@@ -243,43 +243,72 @@ impl<'a> BlockedView<'a> {
     }
 
     /// [V45] on the records: the data starts tile the data, widths at most the maximum (0
-    /// in the end record), f32 anchors finite (grid anchors cannot leave the grid).
+    /// in the end record), f32 anchors finite (grid anchors cannot leave the grid). Each
+    /// record is checked without branching on its fields; the field at fault is looked for
+    /// only when one fails.
     fn check_directory(&self, f: &Fields, dir_at: usize, records: u64) -> Result<()> {
-        let (s, rule) = (&self.shape, Rule(45));
-        let byte = |bit: u64| dir_at + (bit / 8) as usize;
+        let s = &self.shape;
         let mut next = 0;
         for j in 0..records {
-            let at = self.record(j);
-            let start = self.start(j);
-            if start != next {
-                let message = format!("block {j} starts at data bit {start}, not {next}");
-                return Err(f.err(byte(at), rule, message));
-            }
             let anchor = self.anchor(j);
-            if let Some(k) = (0..3).find(|&k| !self.in_range(anchor[k])) {
-                let at = at + (s.start_bits + k as u32 * s.anchor_bits) as u64;
-                let message = format!("anchor of block {j}, axis {k}: no finite f32");
-                return Err(f.err(byte(at), rule, message));
-            }
+            let mut ok = (self.start(j) == next)
+                & self.in_range(anchor[0])
+                & self.in_range(anchor[1])
+                & self.in_range(anchor[2]);
+            let limit = if j + 1 == records { 0 } else { s.max_width };
             for l in 0..s.levels {
                 let w = self.widths(j, l);
-                let end = j + 1 == records;
-                if let Some(k) = (0..3).find(|&k| w[k] > s.max_width || (end && w[k] > 0)) {
-                    let at = at + (s.start_bits + 3 * s.anchor_bits) as u64;
-                    let at = at + ((3 * l + k as u32) * s.width_bits) as u64;
-                    let message = match end {
-                        true => format!("the end record has width {} (level {l})", w[k]),
-                        false => format!(
-                            "block {j}, level {l}, axis {k}: width {}, more than {}",
-                            w[k], s.max_width
-                        ),
-                    };
-                    return Err(f.err(byte(at), rule, message));
-                }
+                ok &= (w[0] <= limit) & (w[1] <= limit) & (w[2] <= limit);
                 next += ((w[0] + w[1] + w[2]) as u64) << l;
+            }
+            if !ok {
+                return Err(self.directory_fault(f, dir_at, j, records));
             }
         }
         Ok(())
+    }
+
+    /// The error for record `j`, which breaks [V45].
+    #[cold]
+    fn directory_fault(&self, f: &Fields, dir_at: usize, j: u64, records: u64) -> crate::Error {
+        let (s, rule) = (&self.shape, Rule(45));
+        let byte = |bit: u64| dir_at + (bit / 8) as usize;
+        let at = self.record(j);
+        let next: u64 = (0..j)
+            .flat_map(|i| (0..s.levels).map(move |l| (i, l)))
+            .map(|(i, l)| {
+                let w = self.widths(i, l);
+                ((w[0] + w[1] + w[2]) as u64) << l
+            })
+            .sum();
+        let start = self.start(j);
+        if start != next {
+            let message = format!("block {j} starts at data bit {start}, not {next}");
+            return f.err(byte(at), rule, message);
+        }
+        let anchor = self.anchor(j);
+        if let Some(k) = (0..3).find(|&k| !self.in_range(anchor[k])) {
+            let at = at + (s.start_bits + k as u32 * s.anchor_bits) as u64;
+            let message = format!("anchor of block {j}, axis {k}: no finite f32");
+            return f.err(byte(at), rule, message);
+        }
+        let end = j + 1 == records;
+        for l in 0..s.levels {
+            let w = self.widths(j, l);
+            if let Some(k) = (0..3).find(|&k| w[k] > s.max_width || (end && w[k] > 0)) {
+                let at = at + (s.start_bits + 3 * s.anchor_bits) as u64;
+                let at = at + ((3 * l + k as u32) * s.width_bits) as u64;
+                let message = match end {
+                    true => format!("the end record has width {} (level {l})", w[k]),
+                    false => format!(
+                        "block {j}, level {l}, axis {k}: width {}, more than {}",
+                        w[k], s.max_width
+                    ),
+                };
+                return f.err(byte(at), rule, message);
+            }
+        }
+        f.err(byte(at), rule, format!("block {j}: malformed record"))
     }
 
     /// [V45] on the residuals: every vertex decodes in range, and the positions of the last

@@ -4,7 +4,7 @@
 
 use super::fields::Fields;
 use super::lr_rules::{
-    check_rings, check_vertex_corners, ring_slot_flags, verified_boundaries, SlotMap,
+    check_rings, check_vertex_corners, ring_slot_flags, verified_boundaries, SlotMap, CANONICAL,
 };
 use super::Sections;
 use crate::corner_table::NONE;
@@ -95,9 +95,9 @@ pub(super) fn lr_tables<'a>(
         boundaries_on_ring: false,
     };
 
-    // [V17] entries: values in range, NULL only as a right tip, each record used once. A
-    // branch-light pass first; the slot at fault is looked for only when it fails.
-    let mut record_used = vec![false; records as usize];
+    // [V17] entries: values in range, NULL only as a right tip, the records they use with
+    // tips in range. A branch-light pass first; the slot at fault is looked for only when it
+    // fails. That each record is used once is a semantic clause, checked when verifying.
     // With one ring, the same pass also flags the slots for [V19] and [V20].
     let (entries_ok, one_ring_flags) = scan_entries(lr, vo_star, m, records, m_r, rings == 1);
     let slots_to_search = if entries_ok { 0 } else { 2 * m_r as usize };
@@ -113,12 +113,9 @@ pub(super) fn lr_tables<'a>(
             ))
         };
         if e & IRREGULAR != 0 {
-            if value >= records || record_used[value as usize] {
-                return bad(format!(
-                    "record {value} missing or used twice ({records} records)"
-                ));
+            if value >= records {
+                return bad(format!("record {value} missing ({records} records)"));
             }
-            record_used[value as usize] = true;
             let tip = vo_star.at(3 * value as usize);
             if tip >= m {
                 return Err(word_err(
@@ -132,14 +129,6 @@ pub(super) fn lr_tables<'a>(
             return bad(format!("vertex {value} out of range ({m} vertices)"));
         }
     }
-    if let Some(i) = record_used.iter().position(|&u| slots_to_search > 0 && !u) {
-        return Err(word_err(
-            6,
-            3 * i,
-            Rule(17),
-            format!("record {i} is not used by any entry"),
-        ));
-    }
     // [V18]
     if let Some(i) = (0..vo_v.count()).find(|&i| vo_v.at(i) >= m) {
         return Err(word_err(
@@ -151,7 +140,7 @@ pub(super) fn lr_tables<'a>(
     }
     // [V20] stored corners are canonical corners or NONE.
     let slots = match one_ring_flags {
-        Some(flags) => SlotMap::with_flags(flags, m_r, h.t0),
+        Some((flags, canonical)) => SlotMap::with_counted_flags(flags, canonical, m_r, h.t0),
         None => SlotMap::new(&tables),
     };
     let corner_ok = |x: u32| x == NONE || slots.is_corner(x);
@@ -176,6 +165,10 @@ pub(super) fn lr_tables<'a>(
     let flag = h.flags & LR_BOUNDARIES_ON_RING != 0;
     tables.boundaries_on_ring = flag;
     if verify {
+        check_records_used_once(lr, records).map_err(|(array, i, message)| {
+            let at = if array == 3 { i } else { 3 * i };
+            word_err(array, at, Rule(17), message)
+        })?;
         tables.boundaries_on_ring = verified_boundaries(&tables, &f, corner_at, flag, 20)?;
         check_vertex_corners(&tables, Rule(23), |v, rule, message| {
             let at = if v < m_r {
@@ -189,12 +182,13 @@ pub(super) fn lr_tables<'a>(
     Ok((tables, slots.triangles + h.t0 as u64))
 }
 
-/// [V17] in one pass without early exits or branches: every plain entry's value below `m`
-/// or a right `NULL` without WART; exactly `ni` IRREGULAR entries whose values, all below
-/// `ni`, cover every record (so each is used once); every record's tip below `m`. With
-/// `one_ring`, the same pass gives the slot flags of [`SlotMap`]: on one ring `v.n.n` is
-/// `v + 2` but at the ring's end. Bitwise rather than short-circuit logic, since the flags
-/// follow no pattern a branch predictor could learn.
+/// [V17]'s clauses that keep every answer in range, in one pass without early exits or
+/// branches: every plain entry's value below `m` or a right `NULL` without WART, every
+/// IRREGULAR entry's value below `ni`, every record's tip below `m` (the slow search looks
+/// only at the records that entries use). With `one_ring`, the same pass gives the slot
+/// flags of [`SlotMap`] and the number of canonical triangles: on one ring `v.n.n` is `v + 2` but at the ring's end. Bitwise
+/// rather than short-circuit logic, since the flags follow no pattern a branch predictor
+/// could learn; no stores but the flags', so that it vectorizes.
 fn scan_entries(
     lr: LeWords,
     vo_star: LeWords,
@@ -202,10 +196,8 @@ fn scan_entries(
     records: u32,
     m_r: u32,
     one_ring: bool,
-) -> (bool, Option<Vec<u8>>) {
-    // A byte per record, and one past them that plain entries mark.
-    let mut used = vec![0u8; records as usize + 1];
-    let (mut bad, mut irregular) = (0u32, 0u32);
+) -> (bool, Option<(Vec<u8>, u64)>) {
+    let mut bad = 0u32;
     let mut check = |slot: usize, e: u32| {
         let value = e & VALUE;
         let is_irregular = e >> 31;
@@ -213,13 +205,6 @@ fn scan_entries(
         let plain = (value < m) as u32 | ((value == NULL) as u32 & slot as u32 & (1 ^ wart));
         let ok = (is_irregular & (value < records) as u32) | ((1 ^ is_irregular) & plain);
         bad |= 1 ^ ok;
-        irregular += is_irregular;
-        let mark = if is_irregular != 0 {
-            value.min(records)
-        } else {
-            records
-        };
-        used[mark as usize] = 1;
         (value, is_irregular, wart)
     };
     let words =
@@ -227,21 +212,54 @@ fn scan_entries(
             .map(|w| u32::from_le_bytes(w.try_into().expect("four bytes")));
     let flags = if one_ring {
         let mut flags = vec![0u8; lr.count()];
+        let mut canonical = 0u32;
         for ((slot, e), flag) in words.enumerate().zip(&mut flags) {
             let (value, is_irregular, wart) = check(slot, e);
             let v = (slot / 2) as u32;
             let nn = (v + 2) - m_r * (v + 2 >= m_r) as u32;
             *flag = ring_slot_flags(value, wart, is_irregular, nn);
+            canonical += (*flag & CANONICAL) as u32;
         }
-        Some(flags)
+        Some((flags, canonical as u64))
     } else {
         for (slot, e) in words.enumerate() {
             check(slot, e);
         }
         None
     };
-    let all_used = used[..records as usize].iter().all(|&u| u == 1);
     let tips = (0..records as usize).all(|i| vo_star.at(3 * i) < m);
-    let ok = bad == 0 && irregular == records && all_used && tips;
-    (ok, flags)
+    (bad == 0 && tips, flags)
+}
+
+/// [V17]'s semantic clause: each of the `records` records is used by exactly one IRREGULAR
+/// entry (whose values are below `records`, as the well-formed check found). The fault as
+/// `(array, index, message)`: the second entry that uses a record, or the first record no
+/// entry uses.
+fn check_records_used_once(
+    lr: LeWords,
+    records: u32,
+) -> std::result::Result<(), (usize, usize, String)> {
+    let mut used = vec![false; records as usize];
+    for slot in 0..lr.count() {
+        let e = lr.at(slot);
+        if e & IRREGULAR != 0 {
+            let value = e & VALUE;
+            let seen = used.get_mut(value as usize).ok_or_else(|| {
+                (
+                    3,
+                    slot,
+                    format!("entry {e:#x} of slot {slot}: record {value} missing"),
+                )
+            })?;
+            if *seen {
+                let message = format!("entry {e:#x} of slot {slot}: record {value} used twice");
+                return Err((3, slot, message));
+            }
+            *seen = true;
+        }
+    }
+    match used.iter().position(|&u| !u) {
+        Some(i) => Err((6, i, format!("record {i} is not used by any entry"))),
+        None => Ok(()),
+    }
 }

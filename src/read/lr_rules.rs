@@ -83,7 +83,7 @@ pub(super) struct SlotMap {
     t0: u32,
 }
 
-const CANONICAL: u8 = 1;
+pub(super) const CANONICAL: u8 = 1;
 const JUMPS: u8 = 2;
 
 /// The flags of a ring slot in a [`SlotMap`], from its tip (any value with IRREGULAR), its
@@ -125,6 +125,12 @@ impl SlotMap {
     /// The map of flags made by [`ring_slot_flags`], one per ring slot in slot order.
     pub(super) fn with_flags(flags: Vec<u8>, m_r: u32, t0: u32) -> SlotMap {
         let triangles = flags.iter().map(|&f| (f & CANONICAL) as u64).sum();
+        SlotMap::with_counted_flags(flags, triangles, m_r, t0)
+    }
+
+    /// [`SlotMap::with_flags`] when the pass that made the flags counted the canonical ones
+    /// (`triangles`), as the LR reader's does.
+    pub(super) fn with_counted_flags(flags: Vec<u8>, triangles: u64, m_r: u32, t0: u32) -> SlotMap {
         SlotMap {
             flags,
             triangles,
