@@ -249,7 +249,7 @@ pub(super) fn lr_compact_tables<'a>(
     // corners; then the LR rules every layout keeps (V19; V21–V23 and V38 when verifying).
     // The fast pass's flags only when it found V35 to hold: it stops at a fault.
     let slots = match scan.flags.filter(|_| scan.pairs_hold) {
-        Some(flags) => SlotMap::with_flags(flags, m_r, n0),
+        Some((flags, canonical)) => SlotMap::with_counted_flags(flags, canonical, m_r, n0),
         None => SlotMap::new(&tables),
     };
     let corner_ok = |x: u32| x == NONE || slots.is_corner(x);

@@ -4,7 +4,7 @@
 //! says whether the rules hold: when they do not, the reader's pair-by-pair loop finds the
 //! first fault and names it.
 
-use super::lr_rules::ring_slot_flags;
+use super::lr_rules::{ring_slot_flags, CANONICAL};
 use crate::lr::compact::{BLOCK_SHIFT, EXTENDED, WART_LEFT};
 use crate::lr::{CompactTables, LrLayout, NULL};
 use crate::words::{LeUnits, LeWords, Units, Words};
@@ -15,8 +15,9 @@ type Tables<'a> = CompactTables<LeWords<'a>, LeUnits<'a>>;
 pub(super) struct PairScan {
     /// Whether [V35] holds.
     pub pairs_hold: bool,
-    /// On one ring (and when V35 holds), the slot flags of [`SlotMap`](super::lr_rules::SlotMap).
-    pub flags: Option<Vec<u8>>,
+    /// On one ring (and when V35 holds), the slot flags of [`SlotMap`](super::lr_rules::SlotMap)
+    /// and the number of canonical triangles they flag.
+    pub flags: Option<(Vec<u8>, u64)>,
     /// When V35 holds: every opposite that a record stores, with its pair, for [V37].
     pub stored: Vec<(u32, u32)>,
 }
@@ -34,9 +35,9 @@ pub(super) fn scan_pairs(t: &Tables, m: u32, one_ring: bool) -> PairScan {
     // Plain pairs: tips in range (the left one never NULL, the right one NULL only without
     // WART), bitwise rather than short-circuit logic; extended pairs are checked below.
     let mut bad = 0u32;
-    for (v, word) in t.pairs.0.chunks_exact(4).enumerate() {
-        let p = u32::from_le_bytes(word.try_into().expect("four bytes"));
-        let v = v as u32;
+    let mut canonical = 0u32;
+    // Tips and WART flags of pair `v` (word `p`), and whether they break V35 when plain.
+    let pair = |v: u32, p: u32| {
         let config = p >> 30;
         let plain = (config != EXTENDED) as u32;
         let d = [short15(p), short15(p >> 15)];
@@ -50,21 +51,41 @@ pub(super) fn scan_pairs(t: &Tables, m: u32, one_ring: bool) -> PairScan {
         let wart = [config == WART_LEFT, config == WART_LEFT + 1].map(|w| w as u32);
         let ok =
             (tip[0] < m) as u32 & ((tip[1] < m) as u32 | ((tip[1] == NULL) as u32 & (1 ^ wart[1])));
-        bad |= plain & (1 ^ ok);
-        if one_ring {
+        (tip, wart, plain & (1 ^ ok))
+    };
+    let words = t.pairs.0.chunks_exact(4).enumerate().map(|(v, word)| {
+        let p = u32::from_le_bytes(word.try_into().expect("four bytes"));
+        (v as u32, p)
+    });
+    // Zipped rather than indexed, so that the pass has no bounds checks and vectorizes.
+    if one_ring {
+        for ((v, p), slot_flags) in words.zip(flags.chunks_exact_mut(2)) {
+            let (tip, wart, fault) = pair(v, p);
+            bad |= fault;
             let nn = (v + 2) - m_r * (v + 2 >= m_r) as u32;
             for side in 0..2 {
-                flags[2 * v as usize + side] = ring_slot_flags(tip[side], wart[side], 0, nn);
+                let flag = ring_slot_flags(tip[side], wart[side], 0, nn);
+                slot_flags[side] = flag;
+                canonical += (flag & CANONICAL) as u32;
             }
+        }
+    } else {
+        for (v, p) in words {
+            bad |= pair(v, p).2;
         }
     }
     // A stored opposite takes a record unit at least.
     let mut stored = Vec::with_capacity(if bad == 0 { t.records.count() } else { 0 });
-    let pairs_hold =
-        bad == 0 && extended_pairs_hold(t, m, one_ring.then_some(&mut flags), &mut stored);
+    let pairs_hold = bad == 0
+        && extended_pairs_hold(
+            t,
+            m,
+            one_ring.then_some((&mut flags, &mut canonical)),
+            &mut stored,
+        );
     PairScan {
         pairs_hold,
-        flags: one_ring.then_some(flags),
+        flags: one_ring.then_some((flags, canonical as u64)),
         stored,
     }
 }
@@ -76,7 +97,7 @@ pub(super) fn scan_pairs(t: &Tables, m: u32, one_ring: bool) -> PairScan {
 fn extended_pairs_hold(
     t: &Tables,
     m: u32,
-    mut flags: Option<&mut Vec<u8>>,
+    mut flags: Option<(&mut Vec<u8>, &mut u32)>,
     stored: &mut Vec<(u32, u32)>,
 ) -> bool {
     let (m_r, records) = (t.m_r, t.records.count());
@@ -91,8 +112,7 @@ fn extended_pairs_hold(
         }
         ok
     };
-    let extended = (0..m_r).filter(|&v| t.pairs.at(v as usize) >> 30 == EXTENDED);
-    for v in extended {
+    for v in extended_pairs(&t.pairs) {
         let p = t.pairs.at(v as usize);
         if !blocks_start(
             (v >> BLOCK_SHIFT) as usize + 1,
@@ -116,9 +136,12 @@ fn extended_pairs_hold(
             if !(tip < m || right_null) || (tip == NULL && irregular) {
                 return false;
             }
-            if let Some(flags) = flags.as_deref_mut() {
-                flags[2 * v as usize + side] =
-                    ring_slot_flags(tip, wart as u32, irregular as u32, nn);
+            if let Some((flags, canonical)) = flags.as_mut() {
+                let slot = &mut flags[2 * v as usize + side];
+                // The plain pass counted the flag it made from the pair word's bits.
+                **canonical -= (*slot & CANONICAL) as u32;
+                *slot = ring_slot_flags(tip, wart as u32, irregular as u32, nn);
+                **canonical += (*slot & CANONICAL) as u32;
             }
         }
     }
@@ -139,4 +162,35 @@ pub(super) fn stored_opposites(t: &Tables) -> Vec<(u32, u32)> {
         }
     }
     stored
+}
+
+/// The ring vertices whose pair is extended, in order: a mask per 64 pairs, then its set
+/// bits (a filter branching on every pair would mispredict at each of the scattered
+/// extended pairs).
+fn extended_pairs<'b>(pairs: &'b LeWords) -> impl Iterator<Item = u32> + 'b {
+    pairs.0.chunks(4 * 64).enumerate().flat_map(|(k, chunk)| {
+        let mask = chunk
+            .chunks_exact(4)
+            .enumerate()
+            .fold(0u64, |mask, (i, w)| {
+                let p = u32::from_le_bytes(w.try_into().expect("four bytes"));
+                mask | ((p >> 30 == EXTENDED) as u64) << i
+            });
+        BitsSet(mask).map(move |i| (64 * k) as u32 + i)
+    })
+}
+
+/// The set bits of a mask, lowest first.
+struct BitsSet(u64);
+
+impl Iterator for BitsSet {
+    type Item = u32;
+    #[inline]
+    fn next(&mut self) -> Option<u32> {
+        let i = self.0.trailing_zeros();
+        (self.0 != 0).then(|| {
+            self.0 &= self.0 - 1;
+            i
+        })
+    }
 }
