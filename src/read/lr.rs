@@ -186,9 +186,10 @@ pub(super) fn lr_tables<'a>(
 /// branches: every plain entry's value below `m` or a right `NULL` without WART, every
 /// IRREGULAR entry's value below `ni`, every record's tip below `m` (the slow search looks
 /// only at the records that entries use). With `one_ring`, the same pass gives the slot
-/// flags of [`SlotMap`] and the number of canonical triangles: on one ring `v.n.n` is `v + 2` but at the ring's end. Bitwise
-/// rather than short-circuit logic, since the flags follow no pattern a branch predictor
-/// could learn; no stores but the flags', so that it vectorizes.
+/// flags of [`SlotMap`] and the number of canonical triangles: on one ring `v.n.n` is
+/// `v + 2` but at the ring's end. Bitwise rather than short-circuit logic, since the flags
+/// follow no pattern a branch predictor could learn; no stores but the flags', so that it
+/// vectorizes.
 fn scan_entries(
     lr: LeWords,
     vo_star: LeWords,
