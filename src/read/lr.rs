@@ -165,9 +165,8 @@ pub(super) fn lr_tables<'a>(
     let flag = h.flags & LR_BOUNDARIES_ON_RING != 0;
     tables.boundaries_on_ring = flag;
     if verify {
-        check_records_used_once(lr, records).map_err(|(array, i, message)| {
-            let at = if array == 3 { i } else { 3 * i };
-            word_err(array, at, Rule(17), message)
+        check_records_used_once(lr, records, |array, i, message| {
+            word_err(array, i, Rule(17), message)
         })?;
         tables.boundaries_on_ring = verified_boundaries(&tables, &f, corner_at, flag, 20)?;
         check_vertex_corners(&tables, Rule(23), |v, rule, message| {
@@ -233,34 +232,35 @@ fn scan_entries(
 }
 
 /// [V17]'s semantic clause: each of the `records` records is used by exactly one IRREGULAR
-/// entry (whose values are below `records`, as the well-formed check found). The fault as
-/// `(array, index, message)`: the second entry that uses a record, or the first record no
-/// entry uses.
+/// entry (whose values are below `records`, as the well-formed check found). A fault is
+/// reported through `fault(array, word, message)`: at the second entry that uses a record
+/// (`LR`), or at the tip word of the first record no entry uses (`VO*`).
 fn check_records_used_once(
     lr: LeWords,
     records: u32,
-) -> std::result::Result<(), (usize, usize, String)> {
+    fault: impl Fn(usize, usize, String) -> crate::Error,
+) -> Result<()> {
     let mut used = vec![false; records as usize];
     for slot in 0..lr.count() {
         let e = lr.at(slot);
         if e & IRREGULAR != 0 {
             let value = e & VALUE;
-            let seen = used.get_mut(value as usize).ok_or_else(|| {
-                (
-                    3,
-                    slot,
-                    format!("entry {e:#x} of slot {slot}: record {value} missing"),
-                )
-            })?;
+            let entry = format!("entry {e:#x} of slot {slot}: record {value}");
+            let seen = used
+                .get_mut(value as usize)
+                .ok_or_else(|| fault(3, slot, format!("{entry} missing")))?;
             if *seen {
-                let message = format!("entry {e:#x} of slot {slot}: record {value} used twice");
-                return Err((3, slot, message));
+                return Err(fault(3, slot, format!("{entry} used twice")));
             }
             *seen = true;
         }
     }
     match used.iter().position(|&u| !u) {
-        Some(i) => Err((6, i, format!("record {i} is not used by any entry"))),
+        Some(i) => Err(fault(
+            6,
+            3 * i,
+            format!("record {i} is not used by any entry"),
+        )),
         None => Ok(()),
     }
 }

@@ -152,12 +152,8 @@ fn extended_pairs_hold(
 /// (after the reader's loop has checked V35).
 pub(super) fn stored_opposites(t: &Tables) -> Vec<(u32, u32)> {
     let mut stored = Vec::new();
-    for v in 0..t.m_r {
-        let p = t.pairs.at(v as usize);
-        if let Some(x) = (p >> 30 == EXTENDED)
-            .then(|| t.decode_extended(v, p))
-            .flatten()
-        {
+    for v in extended_pairs(&t.pairs) {
+        if let Some(x) = t.decode_extended(v, t.pairs.at(v as usize)) {
             stored.extend(x.opposites.into_iter().flatten().map(|c| (v, c)));
         }
     }

@@ -53,10 +53,10 @@ pub use view::{Connectivity, Container};
 
 use crate::error::Result;
 
-/// The rules that [`open`] leaves, wholly or in part, to [`open_verified`] (FORMAT.md §5.1): whether opposites
-/// face each other, fans start where `v.c` says, the LR flags hold, each LR record is used
-/// once and the decoded values of blocked positions are in range. A file that breaks only these still answers every
-/// operator with an id in range.
+/// The rules that [`open`] leaves, wholly or in part, to [`open_verified`] (FORMAT.md
+/// §5.1): whether opposites face each other, fans start where `v.c` says, the LR flags hold,
+/// each LR record is used once and the decoded values of blocked positions are in range. A
+/// file that breaks only these still answers every operator with an id in range.
 pub const SEMANTIC_RULES: [crate::Rule; 9] = [
     crate::Rule(17),
     crate::Rule(21),
