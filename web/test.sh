@@ -6,7 +6,8 @@
 # checked against `lrmesh info --json`, a triangle is clicked and the highlighted stars checked
 # against a corner table, the mesh is saved as .lrm in other connectivities and the saved
 # files verified natively here, screenshots go to web/out/, and a 1M-triangle mesh is decoded
-# in the page and natively, the WebAssembly speed stated as a ratio (at least 0.5).
+# in the page and natively, the WebAssembly speed reported as a ratio
+# (a "# bench" line: the target is at least 0.5, measured, not asserted).
 # The last line is `N passed, M failed`; the exit status is 1 when M > 0.
 set -euo pipefail
 web=$(cd "$(dirname "$0")" && pwd)
