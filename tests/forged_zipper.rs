@@ -75,12 +75,12 @@ fn verified_rule(bytes: &[u8]) -> Rule {
 /// [V56] `ZIPR` counts and length. (`m < 0x3FFFFFFF` cannot break alone: `m = V`.)
 #[test]
 fn v56_zipr_counts() {
-    // m = m_r = 25, R = 1, n0 = 3, X = 11, I = 9, P = 0, E = 0.
+    // m = m_r = 25, R = 1, n0 = 3, X = 6, I = 9, P = 0, E = 0.
     let bytes = vector("torus_with_t0.zipper.lrm");
     let at = section_at(&bytes, Tag::ZIPR);
     let field = |f: usize, x: u32| forge(&bytes, Tag::ZIPR, |p| put(p, f, x));
     breaks(&field(0, 24), 56, "ZIPR", at, "section MESH says 25");
-    breaks(&field(32, 2), 56, "ZIPR", at + 32, "unknown flag bits");
+    breaks(&field(32, 4), 56, "ZIPR", at + 32, "unknown flag bits");
     breaks(&field(36, 1), 56, "ZIPR", at + 32, "reserved bits");
     for m_r in [26, 0, 3] {
         breaks(&field(4, m_r), 56, "ZIPR", at + 4, "ring vertices");
@@ -266,6 +266,31 @@ fn v60_corners_and_lr_rules() {
         }
     }
     assert!(semantic > 0);
+}
+
+/// `WART_DELTAS` (bit 1 of the flags, version 1.8) cleared on files that need it: the
+/// slots before canonical T2 triangles read as 1.7 does (their warts as plain triangles,
+/// right redundant copies as missing), which is well formed but not the mesh: `open`
+/// accepts it with every operator in range, verification fails.
+#[test]
+fn wart_deltas_cleared() {
+    for name in [
+        "torus_with_t0",
+        "genus3_torus",
+        "two_components",
+        "bent_normals",
+    ] {
+        let bytes = vector(&format!("{name}.zipper.lrm"));
+        let flags = get(&payload(&bytes, Tag::ZIPR), 32);
+        assert_eq!(flags & 2, 2, "{name}: the vector sets WART_DELTAS");
+        let bad = forge(&bytes, Tag::ZIPR, |p| put(p, 32, flags & !2));
+        let view = open(&bad, &Limits::default()).unwrap();
+        lrmesh::fuzz_checks::walk_in_range(&view);
+        assert!(
+            open_verified(&bad, &Limits::default()).is_err(),
+            "{name}: verified without WART_DELTAS"
+        );
+    }
 }
 
 /// The fuzz targets `container_forged` and `operators` start from Zipper containers too

@@ -134,14 +134,15 @@ fn listing(name: &str, bytes: &[u8]) -> String {
             name,
             z,
             format!(
-                "{n} triangles, {} ring vertices, {} T0 rows, {} exceptions, {} records, {} pairs, {} explicit T0 opposites, boundaries on the ring: {}",
+                "{n} triangles, {} ring vertices, {} T0 rows, {} exceptions, {} records, {} pairs, {} explicit T0 opposites, boundaries on the ring: {}, wart deltas: {}",
                 z.ring_vertices(),
                 z.t0_count(),
                 z.exception_count(),
                 z.record_count(),
                 z.pair_count(),
                 z.explicit_count(),
-                z.boundaries_on_ring()
+                z.boundaries_on_ring(),
+                z.wart_deltas()
             ),
         ),
         View::Strips(strips) => corner_listing(
@@ -454,5 +455,35 @@ fn vectors_match() {
             assert_same_up_to_rotation(&back.triangles, &mesh.triangles, name);
             lrmesh::fuzz_checks::assert_same_in_order(&back, &mesh);
         }
+    }
+}
+
+/// Zipper files of version 1.7 (no `WART_DELTAS`, every wart an exception word), kept from
+/// before the flag: they still open, verify, and give every corner's vertex and opposite as
+/// the current vector of the same mesh does (the listing after its header lines).
+#[test]
+fn zipper_files_of_version_1_7_read_the_same() {
+    for name in ["torus_with_t0", "genus3_torus"] {
+        let old = std::fs::read(dir().join(format!("{name}.zipper-1.7.lrm"))).unwrap();
+        assert_eq!(
+            u16::from_le_bytes([old[10], old[11]]),
+            7,
+            "{name}: minor version"
+        );
+        open_verified(&old, &Limits::default()).unwrap();
+        let current = std::fs::read(dir().join(format!("{name}.zipper.lrm"))).unwrap();
+        let (old_listing, new_listing) = (listing(name, &old), listing(name, &current));
+        assert!(old_listing
+            .lines()
+            .nth(1)
+            .unwrap()
+            .ends_with("wart deltas: false"));
+        assert!(new_listing
+            .lines()
+            .nth(1)
+            .unwrap()
+            .ends_with("wart deltas: true"));
+        let corners = |s: &str| s.lines().skip(2).map(str::to_owned).collect::<Vec<_>>();
+        assert_eq!(corners(&old_listing), corners(&new_listing), "{name}");
     }
 }

@@ -403,11 +403,17 @@ pub struct ZiprHeader {
     pub pairs: u32,
     /// `E`: explicit T0 opposites.
     pub explicit: u32,
-    /// Flags: [`LR_BOUNDARIES_ON_RING`] or 0.
+    /// Flags: [`LR_BOUNDARIES_ON_RING`], [`ZIPPER_WART_DELTAS`].
     pub flags: u32,
     /// Reserved, 0.
     pub reserved: u32,
 }
+
+/// `ZIPR` flag (FORMAT.md §3.5e, version 1.8): a delta slot followed on its side by a
+/// canonical T2 is a wart. That slot can hold nothing else (the T2 covers its ring edge on
+/// that side), so the flag costs no symbol, and a wart whose tip is a small decrement of the
+/// chain needs no exception word.
+pub const ZIPPER_WART_DELTAS: u32 = 2;
 
 impl ZiprHeader {
     /// Bytes of the header.

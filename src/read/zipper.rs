@@ -9,7 +9,7 @@ use super::lr_rules::{
 use super::Sections;
 use crate::corner_table::NONE;
 use crate::error::{Result, Rule};
-use crate::format::layout::{ZiprHeader, LR_BOUNDARIES_ON_RING};
+use crate::format::layout::{ZiprHeader, LR_BOUNDARIES_ON_RING, ZIPPER_WART_DELTAS};
 use crate::format::Tag;
 use crate::ids::Corner;
 use crate::lr::zipper::{
@@ -45,7 +45,7 @@ pub(super) fn zipper_tables<'a>(
     let h = ZiprHeader::read(b);
     let (m_r, rings, n0) = (h.m_r, h.rings, h.t0);
     f.expect_vertices(0, h.m, m, Rule(56))?;
-    if h.flags & !LR_BOUNDARIES_ON_RING != 0 || h.reserved != 0 {
+    if h.flags & !(LR_BOUNDARIES_ON_RING | ZIPPER_WART_DELTAS) != 0 || h.reserved != 0 {
         return Err(f.err(32, Rule(56), "unknown flag bits or reserved bits are set"));
     }
     if m >= NULL {
@@ -101,6 +101,7 @@ pub(super) fn zipper_tables<'a>(
         m_r,
         m,
         boundaries_on_ring: false,
+        wart_deltas: h.flags & ZIPPER_WART_DELTAS != 0,
     };
     debug_assert_eq!(tables.planes.count(), plane_array_words(m_r));
 
@@ -260,12 +261,24 @@ fn check_slots(
             let (v, side) = (first + bit / 2, (bit % 2) as usize);
             let s = slot.symbol_at(bit);
             let mut wart = 0;
+            let next = t.ring_next(v);
+            // With WART_DELTAS, whether the side's next slot is a canonical T2: in this
+            // block unless v ends its ring or the block.
+            let before_t2 = t.wart_deltas
+                && s <= NEXT_NEXT_OR_NULL
+                && PREVIOUS
+                    == if next == v + 1 && bit + 2 < used {
+                        slot.symbol_at(bit + 2)
+                    } else {
+                        t.symbol(next, side)
+                    };
             let tip = match s {
                 s if s < DELTAS => {
+                    wart = before_t2 as u32;
                     chain[side] = chain[side].wrapping_sub(s);
                     chain[side]
                 }
-                NEXT_NEXT_OR_NULL if side == 1 => NULL,
+                NEXT_NEXT_OR_NULL if side == 1 && !before_t2 => NULL,
                 EXCEPTION | IRREGULAR_SLOT => {
                     let (array, at, count) = if s == EXCEPTION {
                         exceptions += 1;
@@ -335,7 +348,7 @@ fn check_slots(
                 }
                 // The ring rules' own tips: v.p, v.n.n.
                 PREVIOUS => t.ring_prev(v),
-                _ => t.ring_next(t.ring_next(v)),
+                _ => t.ring_next(next),
             };
             if tip >= m && !(tip == NULL && s == NEXT_NEXT_OR_NULL) {
                 return Err(word_err(
@@ -345,7 +358,7 @@ fn check_slots(
                     format!("slot ({v}, {side}) has tip {tip:#x} ({m} vertices)"),
                 ));
             }
-            let nn = t.ring_next(t.ring_next(v));
+            let nn = t.ring_next(next);
             flags.push(ring_slot_flags(tip, wart, (s == IRREGULAR_SLOT) as u32, nn));
         }
     }

@@ -4,16 +4,28 @@
 
 use super::tables::{plane_array_words, ZipperTables};
 use super::{
-    BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT, HEAD_WORDS,
-    IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PREVIOUS, RECORD_WORDS, STATE_SHIFT,
-    STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
+    BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, DELTAS, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT,
+    HEAD_WORDS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PREVIOUS, RECORD_WORDS,
+    STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
 };
 use crate::corner_table::NONE;
 use crate::error::{Error, Result};
 use crate::lr::tables::{LrLayout, LrTables, IRREGULAR, LEFT, NULL, WART};
 
+/// Whether slot `(v, side)` of `t` is followed on its side by a canonical T2 (symbol
+/// [`PREVIOUS`]). Such a slot holds the T2's redundant copy or a wart (the T2 is the
+/// triangle on that side of the slot's ring edge), and with `WART_DELTAS` its symbols read
+/// so (OPERATORS.md §8.1).
+fn before_t2(t: &LrTables<Vec<u32>>, v: u32, side: usize) -> bool {
+    let next = t.ring_next(v);
+    t.entry(next, side) & (IRREGULAR | WART) == 0 && t.tip(next, side) == t.ring_prev(next)
+}
+
 /// What slot `(v, side)` of `t` stores after chain value `chain`: its symbol, the chain
-/// value after it, and the words it adds to the exception or record list.
+/// value after it, and the words it adds to the exception or record list. Slots before a
+/// canonical T2 are coded for the `WART_DELTAS` reading: a wart as a delta when its tip is
+/// a small decrement of the chain, the redundant copy as symbol 5 on either side, anything
+/// else as an exception.
 fn symbol(t: &LrTables<Vec<u32>>, v: u32, side: usize, chain: u32) -> (u32, u32, Vec<u32>) {
     let entry = t.entry(v, side);
     let tip = t.tip(v, side);
@@ -21,24 +33,34 @@ fn symbol(t: &LrTables<Vec<u32>>, v: u32, side: usize, chain: u32) -> (u32, u32,
     if entry & IRREGULAR != 0 {
         return (IRREGULAR_SLOT, tip, vec![stored]);
     }
+    let delta = chain.wrapping_sub(tip);
+    let next_next = t.ring_next(t.ring_next(v));
+    if before_t2(t, v, side) {
+        return match delta {
+            0..=3 if entry & WART != 0 => (delta, tip, vec![]),
+            _ if entry & WART == 0 && tip == next_next => (NEXT_NEXT_OR_NULL, chain, vec![]),
+            _ => (EXCEPTION, tip, vec![stored]),
+        };
+    }
     if entry & WART != 0 {
         return (EXCEPTION, tip, vec![stored]);
     }
     if tip == t.ring_prev(v) {
         return (PREVIOUS, chain, vec![]);
     }
-    let next_next_or_null = if side == LEFT {
-        t.ring_next(t.ring_next(v))
-    } else {
-        NULL
-    };
-    if tip == next_next_or_null {
+    if tip == if side == LEFT { next_next } else { NULL } {
         return (NEXT_NEXT_OR_NULL, chain, vec![]);
     }
-    match chain.wrapping_sub(tip) {
-        d @ 0..=3 => (d, tip, vec![]),
+    match delta {
+        0..=3 => (delta, tip, vec![]),
         _ => (EXCEPTION, tip, vec![stored]),
     }
+}
+
+/// Whether slot `(v, side)`, coded with symbol `s`, reads differently without
+/// `WART_DELTAS`: a delta or a right symbol 5 before a canonical T2.
+fn needs_wart_deltas(t: &LrTables<Vec<u32>>, v: u32, side: usize, s: u32) -> bool {
+    (s < DELTAS || (s == NEXT_NEXT_OR_NULL && side != LEFT)) && before_t2(t, v, side)
 }
 
 /// Record word 1 of irregular slot `(v, side)`: the opposites the ring rules cannot infer
@@ -84,6 +106,9 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
     let mut planes = Vec::with_capacity(plane_array_words(m_r));
     let mut heads = vec![0u32; blocks * HEAD_WORDS];
     let (mut exceptions, mut records, mut pairs) = (Vec::new(), Vec::new(), Vec::new());
+    // Whether some slot needs the WART_DELTAS reading: only then is the flag set (and the
+    // file version 1.8).
+    let mut wart_deltas = false;
     // Each side's chain starts at its first slot's tip (any value would do: the decoder
     // reads the anchors).
     let mut chain = [0, 1].map(|side| if m_r > 0 { t.tip(0, side) } else { 0 });
@@ -101,6 +126,7 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
             for (side, chain) in chain.iter_mut().enumerate() {
                 let (s, next, words) = symbol(t, v, side, *chain);
                 *chain = next;
+                wart_deltas |= needs_wart_deltas(t, v, side, s);
                 match s {
                     EXCEPTION => exceptions.extend(words),
                     IRREGULAR_SLOT => {
@@ -172,6 +198,7 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
         m_r,
         m: t.m,
         boundaries_on_ring: t.boundaries_on_ring,
+        wart_deltas,
     };
     same_as_standard(&z, t)?;
     Ok(z)

@@ -16,7 +16,11 @@
 //!   that the ring rules cannot infer (always a T0 corner on the meshes we measured: the
 //!   slots next to T0 triangles), or a pair of opposites stored whole.
 //!
-//! An exception's or record's tip becomes the chain value. The slots of 64 ring vertices
+//! An exception's or record's tip becomes the chain value. A slot followed on its side by a
+//! canonical T2 can only hold the T2's redundant copy or a wart (the T2 covers the slot's
+//! ring edge on that side): with the header flag `WART_DELTAS` a delta symbol there is a
+//! wart and symbol 5 the redundant copy on either side, so that most warts (a tenth of the
+//! triangles of a scan after the ring's leaf moves) cost a symbol, not an exception word. The slots of 64 ring vertices
 //! (slot `2i + side` of the block) make three 128-bit planes, one bit of each symbol per
 //! plane, stored as groups of 32 slots whose three plane words are adjacent (a symbol is one
 //! group's read), so that a tip is found in constant time with bit operations: the last exception or

@@ -44,6 +44,9 @@ pub struct ZipperTables<W> {
     pub(crate) m: u32,
     /// As [`LrTables`](crate::lr::LrTables)' field: derived, never stored.
     pub(crate) boundaries_on_ring: bool,
+    /// The header's `WART_DELTAS` flag: a delta slot followed on its side by a canonical T2
+    /// is a wart.
+    pub(crate) wart_deltas: bool,
 }
 
 /// The symbol planes of one block and where a slot lies in them.
@@ -174,6 +177,19 @@ impl<W: Words> ZipperTables<W> {
         base.wrapping_sub(sum)
     }
 
+    /// With `WART_DELTAS`, whether the next slot of `(v, side)`'s side is a canonical T2
+    /// (symbol 4): then a delta symbol there is a wart and symbol 5 the T2's redundant copy
+    /// on either side (OPERATORS.md §8.1).
+    #[inline]
+    pub(crate) fn before_t2(&self, v: u32, side: usize) -> bool {
+        self.wart_deltas && self.symbol(self.ring_next(v), side) == PREVIOUS
+    }
+
+    /// Whether the header's `WART_DELTAS` flag is set (version 1.8).
+    pub fn wart_deltas(&self) -> bool {
+        self.wart_deltas
+    }
+
     /// Number of exception slots.
     pub fn exception_count(&self) -> usize {
         self.exceptions.count()
@@ -252,7 +268,9 @@ impl<W: Words> LrLayout for ZipperTables<W> {
         match self.symbol(v, side) {
             s if s < DELTAS => self.chain(&self.slot(v, side)),
             PREVIOUS => self.ring_prev(v),
-            NEXT_NEXT_OR_NULL if side == LEFT => self.ring_next(self.ring_next(v)),
+            NEXT_NEXT_OR_NULL if side == LEFT || self.before_t2(v, side) => {
+                self.ring_next(self.ring_next(v))
+            }
             NEXT_NEXT_OR_NULL => NULL,
             _ => {
                 let slot = self.slot(v, side);
@@ -262,7 +280,11 @@ impl<W: Words> LrLayout for ZipperTables<W> {
     }
     #[inline]
     fn wart(&self, v: u32, side: usize) -> bool {
-        if self.symbol(v, side) < EXCEPTION {
+        let symbol = self.symbol(v, side);
+        if symbol < DELTAS {
+            return self.before_t2(v, side);
+        }
+        if symbol < EXCEPTION {
             return false;
         }
         let slot = self.slot(v, side);

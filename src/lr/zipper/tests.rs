@@ -49,6 +49,7 @@ fn counting<'a>(
         m_r: z.m_r,
         m: z.m,
         boundaries_on_ring: z.boundaries_on_ring,
+        wart_deltas: z.wart_deltas,
     }
 }
 
