@@ -8,12 +8,22 @@ pub trait Words {
     fn at(&self, i: usize) -> u32;
     /// Number of words.
     fn count(&self) -> usize;
+    /// Words `i .. i + N`, with one bounds check where the storage allows it.
+    #[inline(always)]
+    fn array<const N: usize>(&self, i: usize) -> [u32; N] {
+        std::array::from_fn(|k| self.at(i + k))
+    }
 }
 
 impl Words for Vec<u32> {
     #[inline(always)]
     fn at(&self, i: usize) -> u32 {
         self[i]
+    }
+    #[inline(always)]
+    fn array<const N: usize>(&self, i: usize) -> [u32; N] {
+        let words: &[u32; N] = self[i..i + N].try_into().expect("N words");
+        *words
     }
     fn count(&self) -> usize {
         self.len()
@@ -31,6 +41,18 @@ impl Words for LeWords<'_> {
         // made the compiler assemble the word from bytes.
         let b: [u8; 4] = self.0[4 * i..4 * i + 4].try_into().expect("four bytes");
         u32::from_le_bytes(b)
+    }
+    #[inline(always)]
+    fn array<const N: usize>(&self, i: usize) -> [u32; N] {
+        let bytes = &self.0[4 * i..4 * (i + N)];
+        std::array::from_fn(|k| {
+            u32::from_le_bytes([
+                bytes[4 * k],
+                bytes[4 * k + 1],
+                bytes[4 * k + 2],
+                bytes[4 * k + 3],
+            ])
+        })
     }
     fn count(&self) -> usize {
         self.0.len() / 4

@@ -201,6 +201,12 @@ pub trait LrLayout {
     /// Whether slot `(v, side)` stores the opposite of a transversal corner (which also
     /// makes it canonical, whatever its tip).
     fn irregular(&self, v: u32, side: usize) -> bool;
+    /// [`tip`](Self::tip) and [`wart`](Self::wart) of slot `(v, side)` together: a layout
+    /// that decodes a slot's fields (the Zipper) reads them once.
+    #[inline(always)]
+    fn tip_and_wart(&self, v: u32, side: usize) -> (u32, bool) {
+        (self.tip(v, side), self.wart(v, side))
+    }
     /// The stored opposite, if any, of a transversal corner of slot `(v, side)`: of its
     /// first (`8v` or `8v+4`) for `second = 0`, of its second (`8v+2` or `8v+6`) for
     /// `second = 1`.
@@ -268,8 +274,16 @@ pub trait LrLayout {
     /// The slot's third vertex: `v.n`, or `v.n.n` in a wart slot (the skipped ring).
     #[inline(always)]
     fn far(&self, v: u32, side: usize) -> u32 {
+        self.far_given(v, self.wart(v, side))
+    }
+
+    /// [`far`](Self::far) of a slot of `v` whose WART flag is known (the operators below
+    /// pass what they have read, so that a layout that decodes a slot's fields, like the
+    /// Zipper, does it once).
+    #[inline(always)]
+    fn far_given(&self, v: u32, wart: bool) -> u32 {
         let n = self.ring_next(v);
-        if self.wart(v, side) {
+        if wart {
             self.ring_next(n)
         } else {
             n
@@ -279,9 +293,13 @@ pub trait LrLayout {
     /// Whether slot `(v, side)` is the redundant copy of a T2 (its first ring edge).
     #[inline(always)]
     fn redundant(&self, v: u32, side: usize) -> bool {
-        !self.irregular(v, side)
-            && !self.wart(v, side)
-            && self.tip(v, side) == self.ring_next(self.ring_next(v))
+        self.redundant_given(v, side, self.tip(v, side))
+    }
+
+    /// [`redundant`](Self::redundant) for a slot whose tip is known.
+    #[inline(always)]
+    fn redundant_given(&self, v: u32, side: usize, tip: u32) -> bool {
+        tip == self.ring_next(self.ring_next(v)) && !self.irregular(v, side) && !self.wart(v, side)
     }
 
     /// Maps a corner of a redundant T2 copy to the same corner of the canonical slot.
@@ -290,9 +308,16 @@ pub trait LrLayout {
         if c >= 8 * self.ring_vertices() {
             return c;
         }
+        self.canonical_given(c, self.tip(c >> 3, (c >> 2 & 1) as usize))
+    }
+
+    /// [`canonical`](Self::canonical) of a slot corner `c` (below `8 m_r`) whose slot's tip
+    /// is known.
+    #[inline(always)]
+    fn canonical_given(&self, c: u32, tip: u32) -> u32 {
         let (v, i) = (c >> 3, c & 7);
         let side = (i >> 2) as usize;
-        if !self.redundant(v, side) {
+        if !self.redundant_given(v, side, tip) {
             return c;
         }
         let w = self.ring_next(v);
@@ -309,11 +334,11 @@ pub trait LrLayout {
     fn across(&self, v: u32, side: usize) -> u32 {
         if side == LEFT {
             if self.wart(v, RIGHT) {
-                8 * self.ring_next(v) + 4
-            } else if self.tip(v, RIGHT) == NULL {
-                NONE
-            } else {
-                self.canonical(8 * v + 5)
+                return 8 * self.ring_next(v) + 4;
+            }
+            match self.tip(v, RIGHT) {
+                NULL => NONE,
+                tip => self.canonical_given(8 * v + 5, tip),
             }
         } else if self.wart(v, LEFT) {
             8 * self.ring_next(v) + 2
@@ -328,16 +353,16 @@ pub trait LrLayout {
     fn find_left(&self, x: u32, y: u32) -> u32 {
         let m_r = self.ring_vertices();
         if y < m_r && self.tip(y, LEFT) == x {
-            return self.canonical(8 * y + 2);
+            return self.canonical_given(8 * y + 2, x);
         }
         if x < m_r {
             let p = self.ring_prev(x);
-            if !self.wart(p, LEFT) && self.tip(p, LEFT) == y {
-                return self.canonical(8 * p);
+            if self.tip_and_wart(p, LEFT) == (y, false) {
+                return self.canonical_given(8 * p, y);
             }
             let pp = self.ring_prev(p);
             if self.wart(pp, LEFT) && self.tip(pp, LEFT) == y {
-                return self.canonical(8 * pp);
+                return self.canonical_given(8 * pp, y);
             }
         }
         NONE
@@ -348,16 +373,16 @@ pub trait LrLayout {
     fn find_right(&self, x: u32, y: u32) -> u32 {
         let m_r = self.ring_vertices();
         if x < m_r && self.tip(x, RIGHT) == y {
-            return self.canonical(8 * x + 4);
+            return self.canonical_given(8 * x + 4, y);
         }
         if y < m_r {
             let p = self.ring_prev(y);
-            if !self.wart(p, RIGHT) && self.tip(p, RIGHT) == x {
-                return self.canonical(8 * p + 6);
+            if self.tip_and_wart(p, RIGHT) == (x, false) {
+                return self.canonical_given(8 * p + 6, x);
             }
             let pp = self.ring_prev(p);
             if self.wart(pp, RIGHT) && self.tip(pp, RIGHT) == x {
-                return self.canonical(8 * pp + 6);
+                return self.canonical_given(8 * pp + 6, x);
             }
         }
         NONE
@@ -372,10 +397,9 @@ pub trait LrLayout {
         }
         let (v, i) = (c >> 3, c & 7);
         let side = (i >> 2) as usize;
-        let wart = self.wart(v, side);
         if i == 1 || i == 5 {
             // The corner facing the ring edge (or, in a wart slot, the wart's edge).
-            return if wart {
+            return if self.wart(v, side) {
                 8 * self.ring_next(v) + if side == LEFT { 0 } else { 6 }
             } else {
                 self.across(v, side)
@@ -384,28 +408,34 @@ pub trait LrLayout {
         if let Some(o) = self.stored_opposite(v, side, (i == 2 || i == 6) as usize) {
             return o;
         }
-        self.inferred_opposite(v, i)
+        let (tip, wart) = self.tip_and_wart(v, side);
+        self.inferred_opposite_given(v, i, tip, wart)
     }
 
     /// `c.o` of transversal corner `8v + i` (`i` in 0, 2, 4, 6) by the ring rules alone
     /// (OPERATORS.md §4), without the slot's stored opposites.
     #[inline(always)]
     fn inferred_opposite(&self, v: u32, i: u32) -> u32 {
-        let side = (i >> 2) as usize;
-        let wart = self.wart(v, side);
-        let tip = self.tip(v, side);
+        let (tip, wart) = self.tip_and_wart(v, (i >> 2) as usize);
+        self.inferred_opposite_given(v, i, tip, wart)
+    }
+
+    /// [`inferred_opposite`](Self::inferred_opposite) for a slot whose tip and WART flag
+    /// are known.
+    #[inline(always)]
+    fn inferred_opposite_given(&self, v: u32, i: u32, tip: u32, wart: bool) -> u32 {
         let p = self.ring_prev(v);
         // A canonical T2 (v.p, v, v.n): tip v.p; one of its corners faces ring edge (v.p, v).
         let t2 = !wart && tip == p;
         match i {
             0 if t2 && self.wart(p, LEFT) => 8 * p + 1,
-            0 => self.find_left(tip, self.far(v, side)),
+            0 => self.find_left(tip, self.far_given(v, wart)),
             2 if t2 => self.across(p, LEFT),
             2 => self.find_left(v, tip),
             4 if t2 => self.across(p, RIGHT),
             4 => self.find_right(tip, v),
             6 if t2 && self.wart(p, RIGHT) => 8 * p + 5,
-            _ => self.find_right(self.far(v, side), tip),
+            _ => self.find_right(self.far_given(v, wart), tip),
         }
     }
 
@@ -413,7 +443,8 @@ pub trait LrLayout {
     /// boundary's `NULL`) and is not a redundant T2 copy.
     #[inline(always)]
     fn slot_is_triangle(&self, v: u32, side: usize) -> bool {
-        self.tip(v, side) != NULL && !self.redundant(v, side)
+        let tip = self.tip(v, side);
+        tip != NULL && !self.redundant_given(v, side, tip)
     }
 
     /// Whether `t` is a canonical triangle id (not a redundant copy, unused or a missing right

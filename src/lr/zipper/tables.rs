@@ -3,8 +3,8 @@
 
 use super::{
     BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, DELTAS, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT,
-    HEAD_WORDS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PREVIOUS, RECORD_WORDS,
-    STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_SECOND,
+    HEAD_WORDS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PLANE_WORDS, PREVIOUS,
+    RECORD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_SECOND,
 };
 use crate::corner_table::NONE;
 use crate::lr::tables::{LrLayout, LEFT, NULL, VALUE, WART};
@@ -79,6 +79,12 @@ impl Slot {
     }
 }
 
+/// The symbol of bit `b` of a group's three words.
+#[inline]
+fn group_symbol(g: [u32; 3], b: usize) -> u32 {
+    (g[0] >> b) & 1 | ((g[1] >> b) & 1) << 1 | ((g[2] >> b) & 1) << 2
+}
+
 /// Bits `0..=i`.
 #[inline]
 fn up_to(i: u32) -> u128 {
@@ -95,16 +101,14 @@ impl<W: Words> ZipperTables<W> {
     /// The three plane words of group `g` (slots `32g ..`, counted over the whole ring).
     #[inline]
     fn group(&self, g: usize) -> [u32; 3] {
-        [0, 1, 2].map(|k| self.planes.at(3 * g + k))
+        self.planes.array(3 * g)
     }
 
     /// The symbol of slot `(v, side)`, from its group's three words alone.
     #[inline]
     pub(crate) fn symbol(&self, v: u32, side: usize) -> u32 {
         let slot = 2 * v as usize + side;
-        let g = self.group(slot / 32);
-        let b = slot % 32;
-        (g[0] >> b) & 1 | ((g[1] >> b) & 1) << 1 | ((g[2] >> b) & 1) << 2
+        group_symbol(self.group(slot / 32), slot % 32)
     }
 
     /// The planes of slot `(v, side)`'s block up to the slot's group (the bits after it
@@ -116,9 +120,22 @@ impl<W: Words> ZipperTables<W> {
         self.planes_until(block, bit / 32, bit)
     }
 
-    /// The planes of block `block`'s groups `0..=last`, for slot bit `bit`.
+    /// The planes of block `block`'s groups `0..=last` (of all four when the block is
+    /// whole: one read of 12 words with fixed shifts is cheaper than a loop), for slot bit
+    /// `bit`.
     #[inline]
     pub(crate) fn planes_until(&self, block: usize, last: u32, bit: u32) -> Slot {
+        if PLANE_WORDS * (block + 1) <= self.planes.count() {
+            let w: [u32; PLANE_WORDS] = self.planes.array(PLANE_WORDS * block);
+            let plane = |k: usize| {
+                w[k] as u128
+                    | (w[3 + k] as u128) << 32
+                    | (w[6 + k] as u128) << 64
+                    | (w[9 + k] as u128) << 96
+            };
+            let p = [plane(0), plane(1), plane(2)];
+            return Slot { block, bit, p };
+        }
         let mut p = [0u128; 3];
         for q in 0..=last as usize {
             let g = self.group(4 * block + q);
@@ -265,24 +282,64 @@ impl<W: Words> LrLayout for ZipperTables<W> {
     }
     #[inline]
     fn tip(&self, v: u32, side: usize) -> u32 {
-        match self.symbol(v, side) {
-            s if s < DELTAS => self.chain(&self.slot(v, side)),
+        // The block's planes read once: the symbol, then the chain or the stored word.
+        let slot = self.slot(v, side);
+        match slot.symbol_at(slot.bit) {
+            s if s < DELTAS => self.chain(&slot),
             PREVIOUS => self.ring_prev(v),
             NEXT_NEXT_OR_NULL if side == LEFT || self.before_t2(v, side) => {
                 self.ring_next(self.ring_next(v))
             }
             NEXT_NEXT_OR_NULL => NULL,
+            _ => self.stored_word(&slot, slot.bit) & VALUE,
+        }
+    }
+    #[inline]
+    fn tip_and_wart(&self, v: u32, side: usize) -> (u32, bool) {
+        let slot = self.slot(v, side);
+        match slot.symbol_at(slot.bit) {
+            s if s < DELTAS => {
+                let wart = self.wart_deltas && {
+                    // The side's next slot: in the slot's group (read with it) unless v ends
+                    // its ring or the group.
+                    let next = self.ring_next(v);
+                    PREVIOUS
+                        == if next == v + 1 && slot.bit % 32 < 30 {
+                            slot.symbol_at(slot.bit + 2)
+                        } else {
+                            self.symbol(next, side)
+                        }
+                };
+                (self.chain(&slot), wart)
+            }
+            PREVIOUS => (self.ring_prev(v), false),
+            NEXT_NEXT_OR_NULL if side == LEFT || self.before_t2(v, side) => {
+                (self.ring_next(self.ring_next(v)), false)
+            }
+            NEXT_NEXT_OR_NULL => (NULL, false),
             _ => {
-                let slot = self.slot(v, side);
-                self.stored_word(&slot, slot.bit) & VALUE
+                let word = self.stored_word(&slot, slot.bit);
+                (word & VALUE, word & WART != 0)
             }
         }
     }
     #[inline]
     fn wart(&self, v: u32, side: usize) -> bool {
-        let symbol = self.symbol(v, side);
+        let slot = 2 * v as usize + side;
+        let (g, b) = (self.group(slot / 32), slot % 32);
+        let symbol = group_symbol(g, b);
         if symbol < DELTAS {
-            return self.before_t2(v, side);
+            if !self.wart_deltas {
+                return false;
+            }
+            // A wart iff the side's next slot is a canonical T2, most often in this group.
+            let next = self.ring_next(v);
+            let next_symbol = if next == v + 1 && b < 30 {
+                group_symbol(g, b + 2)
+            } else {
+                self.symbol(next, side)
+            };
+            return next_symbol == PREVIOUS;
         }
         if symbol < EXCEPTION {
             return false;
