@@ -264,14 +264,12 @@ fn check_slots(
             let next = t.ring_next(v);
             // With WART_DELTAS, whether the side's next slot is a canonical T2: in this
             // block unless v ends its ring or the block.
-            let before_t2 = t.wart_deltas
-                && s <= NEXT_NEXT_OR_NULL
-                && PREVIOUS
-                    == if next == v + 1 && bit + 2 < used {
-                        slot.symbol_at(bit + 2)
-                    } else {
-                        t.symbol(next, side)
-                    };
+            let next_symbol = if next == v + 1 && bit + 2 < used {
+                slot.symbol_at(bit + 2)
+            } else {
+                t.symbol(next, side)
+            };
+            let before_t2 = t.wart_deltas & (next_symbol == PREVIOUS);
             let tip = match s {
                 s if s < DELTAS => {
                     wart = before_t2 as u32;
