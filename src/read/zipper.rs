@@ -256,16 +256,25 @@ fn check_slots(
                 format!("block {block} has symbols past the last ring vertex"),
             ));
         }
+        // The block's symbols as bytes, extracted once with fixed-width shifts (a 128-bit
+        // shift by a variable amount per slot cost more than the rest of the loop).
+        let mut symbols = [0u8; 128];
+        for (half, bytes) in symbols.chunks_exact_mut(64).enumerate() {
+            let [a, b, c] = slot.p.map(|p| (p >> (64 * half)) as u64);
+            for (k, byte) in bytes.iter_mut().enumerate() {
+                *byte = ((a >> k) & 1 | ((b >> k) & 1) << 1 | ((c >> k) & 1) << 2) as u8;
+            }
+        }
         let mut chain = [head(0) as u32, head(1) as u32];
         for bit in 0..used {
             let (v, side) = (first + bit / 2, (bit % 2) as usize);
-            let s = slot.symbol_at(bit);
+            let s = symbols[bit as usize] as u32;
             let mut wart = 0;
             let next = t.ring_next(v);
             // With WART_DELTAS, whether the side's next slot is a canonical T2: in this
             // block unless v ends its ring or the block.
             let next_symbol = if next == v + 1 && bit + 2 < used {
-                slot.symbol_at(bit + 2)
+                symbols[bit as usize + 2] as u32
             } else {
                 t.symbol(next, side)
             };
