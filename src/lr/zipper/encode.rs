@@ -22,11 +22,17 @@ fn before_t2(t: &LrTables<Vec<u32>>, v: u32, side: usize) -> bool {
 }
 
 /// What slot `(v, side)` of `t` stores after chain value `chain`: its symbol, the chain
-/// value after it, and the words it adds to the exception or record list. Slots before a
-/// canonical T2 are coded for the `WART_DELTAS` reading: a wart as a delta when its tip is
-/// a small decrement of the chain, the redundant copy as symbol 5 on either side, anything
-/// else as an exception.
-fn symbol(t: &LrTables<Vec<u32>>, v: u32, side: usize, chain: u32) -> (u32, u32, Vec<u32>) {
+/// value after it, and the words it adds to the exception or record list. A slot
+/// `before_t2` a canonical T2 is coded for the `WART_DELTAS` reading: a wart as a delta
+/// when its tip is a small decrement of the chain, the redundant copy as symbol 5 on either
+/// side, anything else as an exception.
+fn symbol(
+    t: &LrTables<Vec<u32>>,
+    v: u32,
+    side: usize,
+    chain: u32,
+    before_t2: bool,
+) -> (u32, u32, Vec<u32>) {
     let entry = t.entry(v, side);
     let tip = t.tip(v, side);
     let stored = (entry & WART) | tip;
@@ -35,7 +41,7 @@ fn symbol(t: &LrTables<Vec<u32>>, v: u32, side: usize, chain: u32) -> (u32, u32,
     }
     let delta = chain.wrapping_sub(tip);
     let next_next = t.ring_next(t.ring_next(v));
-    if before_t2(t, v, side) {
+    if before_t2 {
         return match delta {
             0..=3 if entry & WART != 0 => (delta, tip, vec![]),
             _ if entry & WART == 0 && tip == next_next => (NEXT_NEXT_OR_NULL, chain, vec![]),
@@ -55,12 +61,6 @@ fn symbol(t: &LrTables<Vec<u32>>, v: u32, side: usize, chain: u32) -> (u32, u32,
         0..=3 => (delta, tip, vec![]),
         _ => (EXCEPTION, tip, vec![stored]),
     }
-}
-
-/// Whether slot `(v, side)`, coded with symbol `s`, reads differently without
-/// `WART_DELTAS`: a delta or a right symbol 5 before a canonical T2.
-fn needs_wart_deltas(t: &LrTables<Vec<u32>>, v: u32, side: usize, s: u32) -> bool {
-    (s < DELTAS || (s == NEXT_NEXT_OR_NULL && side != LEFT)) && before_t2(t, v, side)
 }
 
 /// Record word 1 of irregular slot `(v, side)`: the opposites the ring rules cannot infer
@@ -124,9 +124,13 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
         let mut p = [0u128; 3];
         for v in first..m_r.min(first + (1 << BLOCK_SHIFT)) {
             for (side, chain) in chain.iter_mut().enumerate() {
-                let (s, next, words) = symbol(t, v, side, *chain);
+                let before_t2 = before_t2(t, v, side);
+                let (s, next, words) = symbol(t, v, side, *chain, before_t2);
                 *chain = next;
-                wart_deltas |= needs_wart_deltas(t, v, side, s);
+                // A delta or a right symbol 5 before a canonical T2 reads differently
+                // without the flag.
+                wart_deltas |=
+                    before_t2 && (s < DELTAS || (s == NEXT_NEXT_OR_NULL && side != LEFT));
                 match s {
                     EXCEPTION => exceptions.extend(words),
                     IRREGULAR_SLOT => {

@@ -66,6 +66,12 @@ impl Slot {
             as u32
     }
 
+    /// The three words of the slot's group (always among the planes read).
+    #[inline]
+    pub fn group(&self) -> [u32; 3] {
+        self.p.map(|p| (p >> (self.bit & !31)) as u32)
+    }
+
     /// The block's exception slots, one bit each.
     #[inline]
     pub fn exceptions(&self) -> u128 {
@@ -196,10 +202,34 @@ impl<W: Words> ZipperTables<W> {
 
     /// With `WART_DELTAS`, whether the next slot of `(v, side)`'s side is a canonical T2
     /// (symbol 4): then a delta symbol there is a wart and symbol 5 the T2's redundant copy
-    /// on either side (OPERATORS.md §8.1).
+    /// on either side (OPERATORS.md §8.1). `group` holds the slot's group's words, where
+    /// the next slot lies unless `v` ends its ring or the slot ends the group.
     #[inline]
-    pub(crate) fn before_t2(&self, v: u32, side: usize) -> bool {
-        self.wart_deltas && self.symbol(self.ring_next(v), side) == PREVIOUS
+    fn before_t2(&self, v: u32, side: usize, group: [u32; 3]) -> bool {
+        if !self.wart_deltas {
+            return false;
+        }
+        let next = self.ring_next(v);
+        let b = (2 * v as usize + side) % 32;
+        let next_symbol = if next == v + 1 && b < 30 {
+            group_symbol(group, b + 2)
+        } else {
+            self.symbol(next, side)
+        };
+        next_symbol == PREVIOUS
+    }
+
+    /// The tip the ring rules give a slot of symbol 4 (`v.p`) or 5 (`v.n.n` on the left or
+    /// before a canonical T2, else `NULL`).
+    #[inline]
+    fn ring_rule_tip(&self, slot: &Slot, v: u32, side: usize, symbol: u32) -> u32 {
+        if symbol == PREVIOUS {
+            self.ring_prev(v)
+        } else if side == LEFT || self.before_t2(v, side, slot.group()) {
+            self.ring_next(self.ring_next(v))
+        } else {
+            NULL
+        }
     }
 
     /// Whether the header's `WART_DELTAS` flag is set (version 1.8).
@@ -286,11 +316,7 @@ impl<W: Words> LrLayout for ZipperTables<W> {
         let slot = self.slot(v, side);
         match slot.symbol_at(slot.bit) {
             s if s < DELTAS => self.chain(&slot),
-            PREVIOUS => self.ring_prev(v),
-            NEXT_NEXT_OR_NULL if side == LEFT || self.before_t2(v, side) => {
-                self.ring_next(self.ring_next(v))
-            }
-            NEXT_NEXT_OR_NULL => NULL,
+            s @ (PREVIOUS | NEXT_NEXT_OR_NULL) => self.ring_rule_tip(&slot, v, side, s),
             _ => self.stored_word(&slot, slot.bit) & VALUE,
         }
     }
@@ -298,25 +324,8 @@ impl<W: Words> LrLayout for ZipperTables<W> {
     fn tip_and_wart(&self, v: u32, side: usize) -> (u32, bool) {
         let slot = self.slot(v, side);
         match slot.symbol_at(slot.bit) {
-            s if s < DELTAS => {
-                let wart = self.wart_deltas && {
-                    // The side's next slot: in the slot's group (read with it) unless v ends
-                    // its ring or the group.
-                    let next = self.ring_next(v);
-                    PREVIOUS
-                        == if next == v + 1 && slot.bit % 32 < 30 {
-                            slot.symbol_at(slot.bit + 2)
-                        } else {
-                            self.symbol(next, side)
-                        }
-                };
-                (self.chain(&slot), wart)
-            }
-            PREVIOUS => (self.ring_prev(v), false),
-            NEXT_NEXT_OR_NULL if side == LEFT || self.before_t2(v, side) => {
-                (self.ring_next(self.ring_next(v)), false)
-            }
-            NEXT_NEXT_OR_NULL => (NULL, false),
+            s if s < DELTAS => (self.chain(&slot), self.before_t2(v, side, slot.group())),
+            s @ (PREVIOUS | NEXT_NEXT_OR_NULL) => (self.ring_rule_tip(&slot, v, side, s), false),
             _ => {
                 let word = self.stored_word(&slot, slot.bit);
                 (word & VALUE, word & WART != 0)
@@ -326,20 +335,10 @@ impl<W: Words> LrLayout for ZipperTables<W> {
     #[inline]
     fn wart(&self, v: u32, side: usize) -> bool {
         let slot = 2 * v as usize + side;
-        let (g, b) = (self.group(slot / 32), slot % 32);
-        let symbol = group_symbol(g, b);
+        let group = self.group(slot / 32);
+        let symbol = group_symbol(group, slot % 32);
         if symbol < DELTAS {
-            if !self.wart_deltas {
-                return false;
-            }
-            // A wart iff the side's next slot is a canonical T2, most often in this group.
-            let next = self.ring_next(v);
-            let next_symbol = if next == v + 1 && b < 30 {
-                group_symbol(g, b + 2)
-            } else {
-                self.symbol(next, side)
-            };
-            return next_symbol == PREVIOUS;
+            return self.before_t2(v, side, group);
         }
         if symbol < EXCEPTION {
             return false;
