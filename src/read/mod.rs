@@ -42,6 +42,7 @@ mod strips;
 pub mod summary;
 pub mod view;
 mod zipper;
+mod zipper_scan;
 
 pub use attributes::AttributeView;
 pub use parts::PartsView;

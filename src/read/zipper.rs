@@ -6,6 +6,7 @@ use super::fields::Fields;
 use super::lr_rules::{
     check_rings, check_vertex_corners, ring_slot_flags, verified_boundaries, SlotMap,
 };
+use super::zipper_scan::{block_symbols, scan_slots};
 use super::Sections;
 use crate::corner_table::NONE;
 use crate::error::{Result, Rule};
@@ -105,8 +106,19 @@ pub(super) fn zipper_tables<'a>(
     };
     debug_assert_eq!(tables.planes.count(), plane_array_words(m_r));
 
-    // [V58] symbols, heads, exceptions and records.
-    let flags = check_slots(&tables, &word_err)?;
+    // [V58] symbols, heads, exceptions and records: a fast pass first; the slot at fault is
+    // looked for only when it fails. Tests and fuzzing check that both passes agree.
+    let fast = scan_slots(&tables);
+    #[cfg(any(test, fuzzing))]
+    assert_eq!(
+        fast.as_ref(),
+        check_slots(&tables, &word_err).ok().as_ref(),
+        "the fast pass and the slot loop agree"
+    );
+    let flags = match fast {
+        Some(flags) => flags,
+        None => check_slots(&tables, &word_err)?,
+    };
     // [V59] T0 rows.
     let n_explicit = tables.t0_explicit.count();
     let mut explicit = 0usize;
@@ -220,7 +232,8 @@ pub(super) fn zipper_tables<'a>(
 /// below `m`; record word 1 says what it stores as FORMAT.md §3.5e allows, the pairs used
 /// once each in order; every slot's tip is below `m` (`NULL` only in a right slot of symbol
 /// 5); every exception word, record and pair is used. Returns the flags of every slot for
-/// [`SlotMap`], found in the same pass.
+/// [`SlotMap`], found in the same pass. Slot by slot, so that the first fault is named: the
+/// reader runs it when the fast pass (`scan_slots`) has found one.
 fn check_slots(
     t: &ZipperTables<LeWords>,
     word_err: &impl Fn(usize, usize, Rule, String) -> crate::Error,
@@ -256,15 +269,7 @@ fn check_slots(
                 format!("block {block} has symbols past the last ring vertex"),
             ));
         }
-        // The block's symbols as bytes, extracted once with fixed-width shifts (a 128-bit
-        // shift by a variable amount per slot cost more than the rest of the loop).
-        let mut symbols = [0u8; 128];
-        for (half, bytes) in symbols.chunks_exact_mut(64).enumerate() {
-            let [a, b, c] = slot.p.map(|p| (p >> (64 * half)) as u64);
-            for (k, byte) in bytes.iter_mut().enumerate() {
-                *byte = ((a >> k) & 1 | ((b >> k) & 1) << 1 | ((c >> k) & 1) << 2) as u8;
-            }
-        }
+        let symbols = block_symbols(&slot);
         let mut chain = [head(0) as u32, head(1) as u32];
         for bit in 0..used {
             let (v, side) = (first + bit / 2, (bit % 2) as usize);

@@ -38,6 +38,7 @@
 mod encode;
 mod tables;
 
+pub(crate) use tables::Slot;
 pub use tables::{plane_array_words, ZipperTables};
 
 use super::{Lr, LrCounts, LrOptions};

@@ -1,0 +1,284 @@
+//! The well-formed open's fast path over the Zipper's slots (rule V58, and the slot flags of
+//! [`SlotMap`](super::lr_rules::SlotMap)): the exception and record words in linear passes
+//! of their own, then every slot without a branch on its symbol (the symbols follow no
+//! pattern a branch predictor could learn: a mispredicted branch per slot cost more than
+//! the rest of the pass). It only says whether the rule holds: when it does not, the
+//! reader's slot-by-slot loop (`check_slots`) finds the first fault and names it.
+
+use super::lr_rules::ring_slot_flags;
+use crate::lr::zipper::{
+    Slot, BLOCK_SHIFT, DELTAS, EXCEPTION, HEAD_WORDS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PREVIOUS,
+    RECORD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
+};
+use crate::lr::{LrLayout, ZipperTables, NULL, VALUE, WART};
+use crate::words::{LeWords, Words};
+
+type Tables<'a> = ZipperTables<LeWords<'a>>;
+
+/// The low bit of each of 8 bytes set as the bits of the index: spreads a byte of a symbol
+/// plane over the bytes of 8 symbols.
+const SPREAD: [u64; 256] = {
+    let mut table = [0u64; 256];
+    let mut i = 0;
+    while i < 256 {
+        let mut k = 0;
+        while k < 8 {
+            table[i] |= ((i as u64 >> k) & 1) << (8 * k);
+            k += 1;
+        }
+        i += 1;
+    }
+    table
+};
+
+/// A block's 128 symbols as bytes, 8 at a time through [`SPREAD`] (a 128-bit shift by a
+/// variable amount per slot cost more than the rest of a loop over the slots).
+pub(super) fn block_symbols(slot: &Slot) -> [u8; 128] {
+    let planes = slot.p.map(u128::to_le_bytes);
+    let mut symbols = [0u8; 128];
+    for (i, eight) in symbols.chunks_exact_mut(8).enumerate() {
+        let spread = planes.map(|plane| SPREAD[plane[i] as usize]);
+        let bytes = spread[0] | spread[1] << 1 | spread[2] << 2;
+        eight.copy_from_slice(&bytes.to_le_bytes());
+    }
+    symbols
+}
+
+/// `a` if `choose`, else `b`, computing both (a select, not a branch).
+#[inline(always)]
+fn select(choose: bool, a: u32, b: u32) -> u32 {
+    let mask = (choose as u32).wrapping_neg();
+    (a & mask) | (b & !mask)
+}
+
+/// Whether an exception word or a record's first word holds only a WART flag and a vertex
+/// below `m`.
+#[inline(always)]
+fn tip_word_holds(word: u32, m: u32) -> bool {
+    (word & !(WART | VALUE) == 0) & (word & VALUE < m)
+}
+
+/// [V58]'s rules on the exception and record words alone: every such word a WART flag and
+/// a vertex, record word 1 what FORMAT.md §3.5e allows, the pairs used once each in order.
+fn words_hold(t: &Tables, m: u32) -> bool {
+    let n0 = t.t0_count() as u64;
+    let exceptions = t.exceptions.0.chunks_exact(4);
+    let exceptions_hold = exceptions.fold(true, |ok, w| {
+        ok & tip_word_holds(u32::from_le_bytes(w.try_into().expect("four bytes")), m)
+    });
+    let mut pairs = 0usize;
+    let records_hold = t.records.0.chunks_exact(4 * RECORD_WORDS).all(|record| {
+        let word = |i: usize| u32::from_le_bytes(record[4 * i..4 * i + 4].try_into().expect("4"));
+        let (first, second) = (word(0), word(1));
+        let value = second & ((1 << STATE_SHIFT) - 1);
+        let second_holds = match second >> STATE_SHIFT {
+            STORES_NONE => value == 0,
+            STORES_FIRST | STORES_SECOND => (value as u64) < 4 * n0 && value % 4 != 3,
+            STORES_BOTH => {
+                pairs += 1;
+                value as usize == pairs - 1
+            }
+            _ => false,
+        };
+        tip_word_holds(first, m) && second_holds
+    });
+    exceptions_hold
+        && records_hold
+        && t.records.count() % RECORD_WORDS == 0
+        && 2 * pairs == t.pairs.count()
+}
+
+/// What the slots of one block need of the ring: for each slot, `v.p`, `v.n.n` and the
+/// symbol on its side of `v.n`. Arithmetic (`v - 1`, `v + 2`, the slot two bits on) except
+/// at the block's last vertex and next to a ring's end, found from the ring-end bits.
+struct Neighbours {
+    prev: [u32; 128],
+    nn: [u32; 128],
+    next_symbols: [u8; 128],
+}
+
+impl Neighbours {
+    fn of_block(t: &Tables, first: u32, used: usize, symbols: &[u8; 128]) -> Neighbours {
+        let mut n = Neighbours {
+            prev: std::array::from_fn(|bit| (first + bit as u32 / 2).wrapping_sub(1)),
+            nn: std::array::from_fn(|bit| first + bit as u32 / 2 + 2),
+            next_symbols: [0; 128],
+        };
+        n.next_symbols[..126].copy_from_slice(&symbols[2..]);
+        let count = used / 2;
+        let ends = ring_ends(t, first, count);
+        // A vertex that ends its ring, follows or precedes one that does, the block's first
+        // (which may start a ring) and last.
+        let special = ends | ends >> 1 | ends << 1 | 1 | 1 << (count - 1);
+        for k in BitsSet(special & (u64::MAX >> (64 - count))) {
+            let v = first + k;
+            let next = t.ring_next(v);
+            for side in 0..2 {
+                let bit = 2 * k as usize + side;
+                n.prev[bit] = t.ring_prev(v);
+                n.nn[bit] = t.ring_next(next);
+                n.next_symbols[bit] = if next == v + 1 && bit + 2 < used {
+                    symbols[bit + 2]
+                } else {
+                    t.symbol(next, side) as u8
+                };
+            }
+        }
+        n
+    }
+}
+
+/// The ring-end bits of the `count` vertices from `first` (a multiple of 64).
+fn ring_ends(t: &Tables, first: u32, count: usize) -> u64 {
+    if t.ring_count() == 1 {
+        let last = t.m_r - 1;
+        return if last - first < count as u32 {
+            1 << (last - first)
+        } else {
+            0
+        };
+    }
+    let word = |i: u32| {
+        let i = (first / 32 + i) as usize;
+        if i < t.ring_last.count() {
+            t.ring_last.at(i) as u64
+        } else {
+            0
+        }
+    };
+    word(0) | word(1) << 32
+}
+
+/// [V58] on every slot, and the slot flags, in slot order; `None` when the rule fails.
+pub(super) fn scan_slots(t: &Tables) -> Option<Vec<u8>> {
+    let (m, m_r) = (t.m, t.m_r);
+    if !words_hold(t, m) {
+        return None;
+    }
+    let (exception_count, record_count) = (t.exceptions.count(), t.record_count());
+    // Word 0 in place of a word past the end: the counts below fail the scan then.
+    let exception = |i: usize| {
+        if i < exception_count {
+            t.exceptions.at(i)
+        } else {
+            0
+        }
+    };
+    let record = |i: usize| {
+        if i < record_count {
+            t.records.at(RECORD_WORDS * i)
+        } else {
+            0
+        }
+    };
+    let wart_deltas = t.wart_deltas as u32;
+    let mut flags = vec![0u8; 2 * m_r as usize];
+    let (mut exceptions, mut records) = (0usize, 0usize);
+    let mut bad = false;
+    for (block, block_flags) in flags.chunks_mut(2 << BLOCK_SHIFT).enumerate() {
+        let head: [u32; HEAD_WORDS] = t.heads.array(HEAD_WORDS * block);
+        bad |= (head[2] as usize != exceptions) | (head[3] as usize != records);
+        let first = (block << BLOCK_SHIFT) as u32;
+        let slot = t.block_planes(block);
+        let used = block_flags.len();
+        let beyond = if used == 128 { 0 } else { u128::MAX << used };
+        bad |= slot.p.iter().any(|p| p & beyond != 0);
+        let symbols = block_symbols(&slot);
+        // The chains: each side's tip decremented by its delta symbols and set by its
+        // exception and irregular slots (a few in a hundred: a branch).
+        let mut chained = [0u32; 128];
+        let mut stored_wart = [0u8; 128];
+        let mut step = |chain: u32, bit: usize| {
+            let s = symbols[bit] as u32;
+            let chain = if s >= EXCEPTION {
+                let word = if s == EXCEPTION {
+                    exceptions += 1;
+                    exception(exceptions - 1)
+                } else {
+                    records += 1;
+                    record(records - 1)
+                };
+                stored_wart[bit] = (word & WART != 0) as u8;
+                word & VALUE
+            } else {
+                chain.wrapping_sub(select(s < DELTAS, s, 0))
+            };
+            chained[bit] = chain;
+            chain
+        };
+        // The two sides' chains in locals, not an array indexed by side (which kept them in
+        // memory, a store and a load on every slot's path).
+        let (mut left, mut right) = (head[0], head[1]);
+        for bit in (0..used).step_by(2) {
+            left = step(left, bit);
+            right = step(right, bit + 1);
+        }
+        // Every slot's tip, range and flags, without a branch, over the whole block so that
+        // the loop vectorizes (slots past the last ring vertex have symbol 0 and tip 0).
+        let n = Neighbours::of_block(t, first, used, &symbols);
+        let mut block_bad = 0u32;
+        let mut all_flags = [0u8; 128];
+        for bit in 0..128 {
+            let s = symbols[bit] as u32;
+            let before_t2 = wart_deltas & (n.next_symbols[bit] as u32 == PREVIOUS) as u32;
+            let (delta, irregular) = (s < DELTAS, (s == IRREGULAR_SLOT) as u32);
+            let null = (s == NEXT_NEXT_OR_NULL) as u32 & (bit as u32 % 2) & (1 ^ before_t2);
+            let ring_tip = select(
+                s == PREVIOUS,
+                n.prev[bit],
+                select(null != 0, NULL, n.nn[bit]),
+            );
+            let tip = select(delta | (s >= EXCEPTION), chained[bit], ring_tip);
+            let wart = select(delta, before_t2, stored_wart[bit] as u32);
+            block_bad |= (tip >= m) as u32 & (1 ^ null);
+            all_flags[bit] = ring_slot_flags(tip, wart, irregular, n.nn[bit]);
+        }
+        block_flags.copy_from_slice(&all_flags[..used]);
+        bad |= block_bad != 0;
+    }
+    bad |= (exceptions != exception_count) | (records != record_count);
+    (!bad).then_some(flags)
+}
+
+/// The set bits of a mask, lowest first.
+struct BitsSet(u64);
+
+impl Iterator for BitsSet {
+    type Item = u32;
+    #[inline]
+    fn next(&mut self) -> Option<u32> {
+        let i = self.0.trailing_zeros();
+        (self.0 != 0).then(|| {
+            self.0 &= self.0 - 1;
+            i
+        })
+    }
+}
+
+#[cfg(all(test, feature = "fuzz-checks"))]
+mod tests {
+    use crate::rng::Rng;
+
+    /// Zipper files with units copied over others and with bytes overwritten (checksums
+    /// recomputed), through the reader: under `cfg(test)` `zipper_tables` asserts that this
+    /// fast pass and the slot loop agree on every one, and the fuzz targets check it under
+    /// `cfg(fuzzing)`.
+    #[test]
+    fn the_fast_pass_and_the_slot_loop_agree_on_forged_files() {
+        let mut rng = Rng::new(58);
+        for case in 0..400 {
+            // Bits 0-2: the Zipper kind; the others choose size, holes, order and values.
+            let choice = 0b101 | (rng.below(32) as u8) << 3;
+            let mut data = vec![choice];
+            for _ in 0..4 * (1 + rng.below(4)) {
+                data.push(rng.below(256) as u8);
+            }
+            if case % 2 == 0 {
+                crate::fuzz_checks::operators(&data);
+            } else {
+                // Section index 0 to 7, then offset and value.
+                crate::fuzz_checks::container_forged(&data);
+            }
+        }
+    }
+}
