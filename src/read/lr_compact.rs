@@ -96,86 +96,14 @@ pub(super) fn lr_compact_tables<'a>(
     // A fast pass first; the pair at fault is looked for only when it fails. With one ring
     // it also flags the slots for [V19] and [V37].
     let scan = scan_pairs(&tables, m, rings == 1);
-    let mut next_record = 0usize;
-    for v in (0..m_r).filter(|_| !scan.pairs_hold) {
-        let p = pairs.at(v as usize);
-        let block = (v >> BLOCK_SHIFT) as usize;
-        if v % (1 << BLOCK_SHIFT) == 0 && blocks.at(2 * block) as usize != next_record {
-            return Err(word_err(
-                4,
-                2 * block,
-                Rule(35),
-                format!(
-                    "block {block} starts its records at {}, not {next_record}",
-                    blocks.at(2 * block)
-                ),
-            ));
-        }
-        if p >> 30 == EXTENDED {
-            let start = tables.record_start(v, p);
-            if start != next_record {
-                return Err(word_err(
-                    3,
-                    v as usize,
-                    Rule(35),
-                    format!("record of pair {v} at {start}, expected {next_record}"),
-                ));
-            }
-            let record = tables
-                .decode_extended(v, p)
-                .filter(|x| start + x.len <= records.count())
-                .ok_or_else(|| {
-                    unit_err(
-                        9,
-                        start.min(records.count()),
-                        Rule(35),
-                        format!("record of pair {v} runs past the record units"),
-                    )
-                })?;
-            if !record.flags_agree {
-                return Err(word_err(
-                    3,
-                    v as usize,
-                    Rule(35),
-                    format!("pair {v}: IRREGULAR flag and stored opposites disagree"),
-                ));
-            }
-            next_record += record.len;
-        }
-        for side in [0, 1] {
-            let tip = tables.tip(v, side);
-            let ok = tip < m || (tip == NULL && side == 1 && !tables.wart(v, side));
-            if !ok {
-                return Err(word_err(
-                    3,
-                    v as usize,
-                    Rule(35),
-                    format!(
-                        "slot {} has tip {tip:#x} ({m} vertices)",
-                        2 * v as usize + side
-                    ),
-                ));
-            }
-            if tip == NULL && tables.irregular(v, side) {
-                return Err(word_err(
-                    3,
-                    v as usize,
-                    Rule(35),
-                    format!("missing right triangle of pair {v} stores opposites"),
-                ));
-            }
-        }
-    }
-    if !scan.pairs_hold && next_record != records.count() {
-        return Err(unit_err(
-            9,
-            next_record,
-            Rule(35),
-            format!(
-                "{} record units not used by any pair",
-                records.count() - next_record
-            ),
-        ));
+    #[cfg(any(test, fuzzing))]
+    assert_eq!(
+        scan.pairs_hold,
+        check_pairs(&tables, m, &word_err, &unit_err).is_ok(),
+        "the fast pass and the pair loop agree"
+    );
+    if !scan.pairs_hold {
+        check_pairs(&tables, m, &word_err, &unit_err)?;
     }
 
     // [V36] T0 rows: codes, overflow rows used once each and in order, vertices in range.
@@ -313,4 +241,96 @@ pub(super) fn lr_compact_tables<'a>(
         })?;
     }
     Ok((tables, slots.triangles + n0 as u64))
+}
+
+/// [V35] pair by pair, so that the first fault is named: the reader runs it when the fast
+/// pass (`scan_pairs`) has found one.
+fn check_pairs(
+    t: &CompactTables<LeWords, LeUnits>,
+    m: u32,
+    word_err: &impl Fn(usize, usize, Rule, String) -> crate::Error,
+    unit_err: &impl Fn(usize, usize, Rule, String) -> crate::Error,
+) -> Result<()> {
+    let mut next_record = 0usize;
+    for v in 0..t.m_r {
+        let p = t.pairs.at(v as usize);
+        let block = (v >> BLOCK_SHIFT) as usize;
+        if v % (1 << BLOCK_SHIFT) == 0 && t.blocks.at(2 * block) as usize != next_record {
+            return Err(word_err(
+                4,
+                2 * block,
+                Rule(35),
+                format!(
+                    "block {block} starts its records at {}, not {next_record}",
+                    t.blocks.at(2 * block)
+                ),
+            ));
+        }
+        if p >> 30 == EXTENDED {
+            let start = t.record_start(v, p);
+            if start != next_record {
+                return Err(word_err(
+                    3,
+                    v as usize,
+                    Rule(35),
+                    format!("record of pair {v} at {start}, expected {next_record}"),
+                ));
+            }
+            let record = t
+                .decode_extended(v, p)
+                .filter(|x| start + x.len <= t.records.count())
+                .ok_or_else(|| {
+                    unit_err(
+                        9,
+                        start.min(t.records.count()),
+                        Rule(35),
+                        format!("record of pair {v} runs past the record units"),
+                    )
+                })?;
+            if !record.flags_agree {
+                return Err(word_err(
+                    3,
+                    v as usize,
+                    Rule(35),
+                    format!("pair {v}: IRREGULAR flag and stored opposites disagree"),
+                ));
+            }
+            next_record += record.len;
+        }
+        for side in [0, 1] {
+            let tip = t.tip(v, side);
+            let ok = tip < m || (tip == NULL && side == 1 && !t.wart(v, side));
+            if !ok {
+                return Err(word_err(
+                    3,
+                    v as usize,
+                    Rule(35),
+                    format!(
+                        "slot {} has tip {tip:#x} ({m} vertices)",
+                        2 * v as usize + side
+                    ),
+                ));
+            }
+            if tip == NULL && t.irregular(v, side) {
+                return Err(word_err(
+                    3,
+                    v as usize,
+                    Rule(35),
+                    format!("missing right triangle of pair {v} stores opposites"),
+                ));
+            }
+        }
+    }
+    if next_record != t.records.count() {
+        return Err(unit_err(
+            9,
+            next_record,
+            Rule(35),
+            format!(
+                "{} record units not used by any pair",
+                t.records.count() - next_record
+            ),
+        ));
+    }
+    Ok(())
 }

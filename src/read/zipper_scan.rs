@@ -259,14 +259,14 @@ impl Iterator for BitsSet {
 mod tests {
     use crate::rng::Rng;
 
-    /// Zipper files with units copied over others and with bytes overwritten (checksums
+    /// 1,500 Zipper files with units copied over others and with bytes overwritten (checksums
     /// recomputed), through the reader: under `cfg(test)` `zipper_tables` asserts that this
     /// fast pass and the slot loop agree on every one, and the fuzz targets check it under
     /// `cfg(fuzzing)`.
     #[test]
     fn the_fast_pass_and_the_slot_loop_agree_on_forged_files() {
         let mut rng = Rng::new(58);
-        for case in 0..400 {
+        for case in 0..1500 {
             // Bits 0-2: the Zipper kind; the others choose size, holes, order and values.
             let choice = 0b101 | (rng.below(32) as u8) << 3;
             let mut data = vec![choice];
