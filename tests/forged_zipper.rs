@@ -80,7 +80,7 @@ fn v56_zipr_counts() {
     let at = section_at(&bytes, Tag::ZIPR);
     let field = |f: usize, x: u32| forge(&bytes, Tag::ZIPR, |p| put(p, f, x));
     breaks(&field(0, 24), 56, "ZIPR", at, "section MESH says 25");
-    breaks(&field(32, 4), 56, "ZIPR", at + 32, "unknown flag bits");
+    breaks(&field(32, 8), 56, "ZIPR", at + 32, "unknown flag bits");
     breaks(&field(36, 1), 56, "ZIPR", at + 32, "reserved bits");
     for m_r in [26, 0, 3] {
         breaks(&field(4, m_r), 56, "ZIPR", at + 4, "ring vertices");
@@ -116,16 +116,24 @@ fn v57_zipr_rings() {
 #[test]
 fn v58_symbols_and_heads() {
     let bytes = vector("torus_with_t0.zipper.lrm");
-    // 25 ring vertices: 50 slots, two groups of three words.
-    let heads = zipr_at(&bytes, HEADS, 2);
+    // 25 ring vertices: 50 slots, two groups of three words; one block, whose head is two
+    // words (SHORT_HEADS): the anchors, then the counts before it (16 bits each).
+    let counts = zipr_at(&bytes, HEADS, 1);
     breaks(
-        &zipr_set(&bytes, HEADS, 2, 1),
+        &zipr_set(&bytes, HEADS, 1, 1),
         58,
         "ZIPR",
-        heads,
+        counts,
         "exceptions",
     );
-    breaks(&zipr_set(&bytes, HEADS, 3, 1), 58, "ZIPR", heads, "records");
+    let records = 1 << 16;
+    breaks(
+        &zipr_set(&bytes, HEADS, 1, records),
+        58,
+        "ZIPR",
+        counts,
+        "records",
+    );
     // A symbol past the last slot.
     let w = zipr_get(&bytes, PLANES, 3);
     let bad = zipr_set(&bytes, PLANES, 3, w | 1 << 20);
@@ -167,8 +175,8 @@ fn v58_symbols_and_heads() {
             "no valid opposite",
         );
     }
-    // A delta tip out of range: the left anchor moved far.
-    let bad = zipr_set(&bytes, HEADS, 0, 0x7000_0000);
+    // A delta tip out of range: the left anchor's offset from vertex 0 made negative.
+    let bad = zipr_set(&bytes, HEADS, 0, 0x8000);
     if symbol(&bytes, 0) < 4 {
         breaks(&bad, 58, "ZIPR", zipr_at(&bytes, PLANES, 0), "has tip");
     }
@@ -291,6 +299,69 @@ fn wart_deltas_cleared() {
             "{name}: verified without WART_DELTAS"
         );
     }
+}
+
+/// [V58] with superblocks: a mesh of more than 256 blocks (16,384 ring vertices) has a
+/// `SUPER` entry; a count there that is not the exceptions (or records) before its
+/// superblock breaks the first block's sum, and moving the difference into that block's
+/// offsets keeps the file valid (only the sums are the rule).
+#[test]
+fn v58_superblock_counts() {
+    const SUPER: usize = 12;
+    let mesh = lrmesh::generate::irregular_torus(40_000, 7);
+    let options = lrmesh::write::EncodeOptions {
+        connectivity: lrmesh::write::Connectivity::Zipper,
+        ..Default::default()
+    };
+    let bytes = lrmesh::write::encode(&mesh, &options).unwrap();
+    open_verified(&bytes, &Limits::default()).unwrap();
+    let header = ZiprHeader::read(&payload(&bytes, Tag::ZIPR));
+    assert!(header.m_r > 1 << 14, "{} ring vertices", header.m_r);
+    let (exceptions, records) = (zipr_get(&bytes, SUPER, 0), zipr_get(&bytes, SUPER, 1));
+    assert!(exceptions > 0 && records > 0, "{exceptions} {records}");
+    // Block 256 starts superblock 1: its head's counts are offsets 0 from SUPER.
+    let first = 256;
+    assert_eq!(zipr_get(&bytes, HEADS, 2 * first + 1), 0);
+    let bad = zipr_set(&bytes, SUPER, 0, exceptions + 1);
+    breaks(
+        &bad,
+        58,
+        "ZIPR",
+        zipr_at(&bytes, HEADS, 2 * first + 1),
+        "block 256 counts",
+    );
+    let bad = zipr_set(&bytes, SUPER, 1, records - 1);
+    breaks(
+        &bad,
+        58,
+        "ZIPR",
+        zipr_at(&bytes, HEADS, 2 * first + 1),
+        "records",
+    );
+    let moved = zipr_set(&bytes, SUPER, 0, exceptions - 1);
+    let blocks = (header.m_r as usize).div_ceil(64);
+    let moved = (first..blocks.min(first + 256)).fold(moved, |b, block| {
+        let w = zipr_get(&b, HEADS, 2 * block + 1);
+        zipr_set(&b, HEADS, 2 * block + 1, w + 1)
+    });
+    open_verified(&moved, &Limits::default()).unwrap();
+}
+
+/// A file with `SHORT_HEADS` cleared is laid out with four-word heads: its length no longer
+/// fits its counts.
+#[test]
+fn short_heads_cleared() {
+    let bytes = vector("torus_with_t0.zipper.lrm");
+    let flags = get(&payload(&bytes, Tag::ZIPR), 32);
+    assert_eq!(flags & 4, 4, "the vector sets SHORT_HEADS");
+    let bad = forge(&bytes, Tag::ZIPR, |p| put(p, 32, flags & !4));
+    breaks(
+        &bad,
+        56,
+        "ZIPR",
+        section_at(&bytes, Tag::ZIPR),
+        "counts call for",
+    );
 }
 
 /// The fuzz targets `container_forged` and `operators` start from Zipper containers too

@@ -134,7 +134,7 @@ fn listing(name: &str, bytes: &[u8]) -> String {
             name,
             z,
             format!(
-                "{n} triangles, {} ring vertices, {} T0 rows, {} exceptions, {} records, {} pairs, {} explicit T0 opposites, boundaries on the ring: {}, wart deltas: {}",
+                "{n} triangles, {} ring vertices, {} T0 rows, {} exceptions, {} records, {} pairs, {} explicit T0 opposites, boundaries on the ring: {}, wart deltas: {}, short heads: {}",
                 z.ring_vertices(),
                 z.t0_count(),
                 z.exception_count(),
@@ -142,7 +142,8 @@ fn listing(name: &str, bytes: &[u8]) -> String {
                 z.pair_count(),
                 z.explicit_count(),
                 z.boundaries_on_ring(),
-                z.wart_deltas()
+                z.wart_deltas(),
+                z.short_heads()
             ),
         ),
         View::Strips(strips) => corner_listing(
@@ -458,32 +459,36 @@ fn vectors_match() {
     }
 }
 
-/// Zipper files of version 1.7 (no `WART_DELTAS`, every wart an exception word), kept from
-/// before the flag: they still open, verify, and give every corner's vertex and opposite as
-/// the current vector of the same mesh does (the listing after its header lines).
+/// Zipper files of versions 1.7 (no `WART_DELTAS`: every wart an exception word) and 1.8
+/// (four-word heads, before `SHORT_HEADS`), kept from before each flag: they still open,
+/// verify, and give every corner's vertex and opposite as the current vector of the same mesh
+/// does (the listing after its header lines).
 #[test]
-fn zipper_files_of_version_1_7_read_the_same() {
+fn zipper_files_of_versions_1_7_and_1_8_read_the_same() {
+    let versions = [
+        (7, "wart deltas: false, short heads: false"),
+        (8, "wart deltas: true, short heads: false"),
+    ];
     for name in ["torus_with_t0", "genus3_torus"] {
-        let old = std::fs::read(dir().join(format!("{name}.zipper-1.7.lrm"))).unwrap();
-        assert_eq!(
-            u16::from_le_bytes([old[10], old[11]]),
-            7,
-            "{name}: minor version"
-        );
-        open_verified(&old, &Limits::default()).unwrap();
         let current = std::fs::read(dir().join(format!("{name}.zipper.lrm"))).unwrap();
-        let (old_listing, new_listing) = (listing(name, &old), listing(name, &current));
-        assert!(old_listing
-            .lines()
-            .nth(1)
-            .unwrap()
-            .ends_with("wart deltas: false"));
+        let new_listing = listing(name, &current);
         assert!(new_listing
             .lines()
             .nth(1)
             .unwrap()
-            .ends_with("wart deltas: true"));
-        let corners = |s: &str| s.lines().skip(2).map(str::to_owned).collect::<Vec<_>>();
-        assert_eq!(corners(&old_listing), corners(&new_listing), "{name}");
+            .ends_with("wart deltas: true, short heads: true"));
+        for (minor, flags) in versions {
+            let file = format!("{name}.zipper-1.{minor}.lrm");
+            let old = std::fs::read(dir().join(&file)).unwrap();
+            assert_eq!(u16::from_le_bytes([old[10], old[11]]), minor, "{file}");
+            open_verified(&old, &Limits::default()).unwrap();
+            let old_listing = listing(name, &old);
+            assert!(
+                old_listing.lines().nth(1).unwrap().ends_with(flags),
+                "{file}"
+            );
+            let corners = |s: &str| s.lines().skip(2).map(str::to_owned).collect::<Vec<_>>();
+            assert_eq!(corners(&old_listing), corners(&new_listing), "{file}");
+        }
     }
 }

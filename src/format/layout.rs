@@ -384,7 +384,7 @@ impl LrbeHeader {
     }
 }
 
-/// `ZIPR` (§3.5e): ten u32, then twelve u32 arrays.
+/// `ZIPR` (§3.5e): ten u32, then thirteen u32 arrays (`SUPER` empty before version 1.9).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct ZiprHeader {
     /// `m`: vertices.
@@ -403,7 +403,7 @@ pub struct ZiprHeader {
     pub pairs: u32,
     /// `E`: explicit T0 opposites.
     pub explicit: u32,
-    /// Flags: [`LR_BOUNDARIES_ON_RING`], [`ZIPPER_WART_DELTAS`].
+    /// Flags: [`LR_BOUNDARIES_ON_RING`], [`ZIPPER_WART_DELTAS`], [`ZIPPER_SHORT_HEADS`].
     pub flags: u32,
     /// Reserved, 0.
     pub reserved: u32,
@@ -415,11 +415,16 @@ pub struct ZiprHeader {
 /// chain needs no exception word.
 pub const ZIPPER_WART_DELTAS: u32 = 2;
 
+/// `ZIPR` flag (FORMAT.md §3.5e, version 1.9): each block's head is two words (the anchors
+/// as 16-bit offsets from the block's first vertex, the counts as 16-bit offsets from its
+/// superblock's in `SUPER`) instead of four: half a bit per triangle less on a scan.
+pub const ZIPPER_SHORT_HEADS: u32 = 4;
+
 impl ZiprHeader {
     /// Bytes of the header.
     pub const LEN: usize = 40;
     /// The arrays, in file order.
-    pub const ARRAYS: [&'static str; 12] = [
+    pub const ARRAYS: [&'static str; 13] = [
         "ring_starts",
         "ring_last",
         "ring_rank",
@@ -432,6 +437,7 @@ impl ZiprHeader {
         "T0_CODES",
         "EXPLICIT",
         "C",
+        "SUPER",
     ];
 
     /// The header at the start of `b` (at least [`ZiprHeader::LEN`] bytes).
@@ -480,7 +486,10 @@ impl ZiprHeader {
 
     /// The arrays the counts call for; `None` when `m_r > m` or the sizes overflow.
     pub fn layout(&self) -> Option<Layout> {
-        use crate::lr::zipper::{plane_array_words, HEAD_WORDS, RECORD_WORDS};
+        use crate::lr::zipper::{
+            plane_array_words, HEAD_WORDS, RECORD_WORDS, SHORT_HEAD_WORDS, SUPER_SHIFT,
+        };
+        let short = self.flags & ZIPPER_SHORT_HEADS != 0;
         let bits = if self.has_ring_bits() {
             (self.m_r as u64).div_ceil(32)
         } else {
@@ -492,7 +501,7 @@ impl ZiprHeader {
             bits,
             bits,
             plane_array_words(self.m_r) as u64,
-            HEAD_WORDS as u64 * blocks,
+            if short { SHORT_HEAD_WORDS } else { HEAD_WORDS } as u64 * blocks,
             self.exceptions as u64,
             RECORD_WORDS as u64 * self.records as u64,
             2 * self.pairs as u64,
@@ -500,6 +509,10 @@ impl ZiprHeader {
             self.t0 as u64,
             self.explicit as u64,
             (self.m as u64).checked_sub(self.m_r as u64)?,
+            match short {
+                true => 2 * blocks.div_ceil(1 << SUPER_SHIFT).saturating_sub(1),
+                false => 0,
+            },
         ];
         let arrays: Vec<_> = Self::ARRAYS
             .iter()

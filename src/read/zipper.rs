@@ -10,13 +10,15 @@ use super::zipper_scan::{block_symbols, scan_slots};
 use super::Sections;
 use crate::corner_table::NONE;
 use crate::error::{Result, Rule};
-use crate::format::layout::{ZiprHeader, LR_BOUNDARIES_ON_RING, ZIPPER_WART_DELTAS};
+use crate::format::layout::{
+    ZiprHeader, LR_BOUNDARIES_ON_RING, ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
+};
 use crate::format::Tag;
 use crate::ids::Corner;
 use crate::lr::zipper::{
     plane_array_words, BLOCK_SHIFT, DELTAS, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT, HEAD_WORDS,
-    IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PLANE_WORDS, PREVIOUS, RECORD_WORDS, STATE_SHIFT,
-    STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
+    IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PLANE_WORDS, PREVIOUS, RECORD_WORDS, SHORT_HEAD_WORDS,
+    STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
 };
 use crate::lr::{LrLayout, ZipperTables, NULL, VALUE, WART};
 use crate::words::{LeWords, Words};
@@ -46,7 +48,8 @@ pub(super) fn zipper_tables<'a>(
     let h = ZiprHeader::read(b);
     let (m_r, rings, n0) = (h.m_r, h.rings, h.t0);
     f.expect_vertices(0, h.m, m, Rule(56))?;
-    if h.flags & !(LR_BOUNDARIES_ON_RING | ZIPPER_WART_DELTAS) != 0 || h.reserved != 0 {
+    let known = LR_BOUNDARIES_ON_RING | ZIPPER_WART_DELTAS | ZIPPER_SHORT_HEADS;
+    if h.flags & !known != 0 || h.reserved != 0 {
         return Err(f.err(32, Rule(56), "unknown flag bits or reserved bits are set"));
     }
     if m >= NULL {
@@ -69,10 +72,10 @@ pub(super) fn zipper_tables<'a>(
     let layout = h.layout();
     f.expect_len(layout.as_ref().map(|l| l.len), Rule(56))?;
     let layout = layout.expect("checked by expect_len");
-    let arrays: [_; 12] = std::array::from_fn(|i| layout.arrays[i]);
-    let words: [_; 12] = std::array::from_fn(|i| LeWords(&b[arrays[i].start..arrays[i].end()]));
+    let arrays: [_; 13] = std::array::from_fn(|i| layout.arrays[i]);
+    let words: [_; 13] = std::array::from_fn(|i| LeWords(&b[arrays[i].start..arrays[i].end()]));
     let starts = arrays.map(|a| a.start);
-    let [ring_starts, ring_last, ring_rank, planes, heads, exceptions, records, pairs, t0_v, t0_codes, t0_explicit, c] =
+    let [ring_starts, ring_last, ring_rank, planes, heads, exceptions, records, pairs, t0_v, t0_codes, t0_explicit, c, super_counts] =
         words;
     let word_err = |array: usize, i: usize, rule: Rule, message: String| {
         f.err(starts[array] + 4 * i, rule, message)
@@ -99,10 +102,12 @@ pub(super) fn zipper_tables<'a>(
         t0_codes,
         t0_explicit,
         c,
+        super_counts,
         m_r,
         m,
         boundaries_on_ring: false,
         wart_deltas: h.flags & ZIPPER_WART_DELTAS != 0,
+        short_heads: h.flags & ZIPPER_SHORT_HEADS != 0,
     };
     debug_assert_eq!(tables.planes.count(), plane_array_words(m_r));
 
@@ -244,16 +249,20 @@ fn check_slots(
     let blocks = (m_r as usize).div_ceil(1 << BLOCK_SHIFT);
     let n0 = t.t0_count() as u64;
     for block in 0..blocks {
-        let head = |k: usize| t.heads.at(HEAD_WORDS * block + k) as usize;
-        if head(2) != exceptions || head(3) != records {
+        let before = [0, 1].map(|k| t.before_block(block, k));
+        if before != [exceptions, records] {
+            let head_words = if t.short_heads {
+                SHORT_HEAD_WORDS
+            } else {
+                HEAD_WORDS
+            };
             return Err(word_err(
                 HEADS,
-                HEAD_WORDS * block + 2,
+                head_words * block + if t.short_heads { 1 } else { 2 },
                 Rule(58),
                 format!(
                     "block {block} counts {} exceptions and {} records before it, not {exceptions} and {records}",
-                    head(2),
-                    head(3)
+                    before[0], before[1]
                 ),
             ));
         }
@@ -270,7 +279,7 @@ fn check_slots(
             ));
         }
         let symbols = block_symbols(&slot);
-        let mut chain = [head(0) as u32, head(1) as u32];
+        let mut chain = [0, 1].map(|side| t.chain_head(block, side));
         for bit in 0..used {
             let (v, side) = (first + bit / 2, (bit % 2) as usize);
             let s = symbols[bit as usize] as u32;

@@ -7,7 +7,7 @@
 
 use super::lr_rules::ring_slot_flags;
 use crate::lr::zipper::{
-    Slot, BLOCK_SHIFT, DELTAS, EXCEPTION, HEAD_WORDS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PREVIOUS,
+    Slot, BLOCK_SHIFT, DELTAS, EXCEPTION, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PREVIOUS,
     RECORD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
 };
 use crate::lr::{LrLayout, ZipperTables, NULL, VALUE, WART};
@@ -176,8 +176,7 @@ pub(super) fn scan_slots(t: &Tables) -> Option<Vec<u8>> {
     let (mut exceptions, mut records) = (0usize, 0usize);
     let mut bad = false;
     for (block, block_flags) in flags.chunks_mut(2 << BLOCK_SHIFT).enumerate() {
-        let head: [u32; HEAD_WORDS] = t.heads.array(HEAD_WORDS * block);
-        bad |= (head[2] as usize != exceptions) | (head[3] as usize != records);
+        bad |= [0, 1].map(|k| t.before_block(block, k)) != [exceptions, records];
         let first = (block << BLOCK_SHIFT) as u32;
         let slot = t.block_planes(block);
         let used = block_flags.len();
@@ -208,7 +207,7 @@ pub(super) fn scan_slots(t: &Tables) -> Option<Vec<u8>> {
         };
         // The two sides' chains in locals, not an array indexed by side (which kept them in
         // memory, a store and a load on every slot's path).
-        let (mut left, mut right) = (head[0], head[1]);
+        let (mut left, mut right) = (t.chain_head(block, 0), t.chain_head(block, 1));
         for bit in (0..used).step_by(2) {
             left = step(left, bit);
             right = step(right, bit + 1);

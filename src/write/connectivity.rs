@@ -6,7 +6,7 @@ use crate::edgebreaker;
 use crate::error::Result;
 use crate::format::layout::{
     write_fields, Layout, LrbeHeader, LrtbHeader, StrpHeader, ZiprHeader, LR_BOUNDARIES_ON_RING,
-    ZIPPER_WART_DELTAS,
+    ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
 };
 use crate::format::{Kind, Tag};
 use crate::ids::{Triangle, Vertex};
@@ -223,6 +223,7 @@ pub(super) fn zipper_section(z: &Zipper, shape: bool) -> Encoded {
             &t.t0_codes,
             &t.t0_explicit,
             &t.c,
+            &t.super_counts,
         ],
         &[],
     );
@@ -251,7 +252,9 @@ pub(crate) fn zipper_header(z: &Zipper) -> ZiprHeader {
         records: t.record_count() as u32,
         pairs: t.pair_count() as u32,
         explicit: t.explicit_count() as u32,
-        flags: boundary_flag(t) | if t.wart_deltas { ZIPPER_WART_DELTAS } else { 0 },
+        flags: boundary_flag(t)
+            | if t.wart_deltas { ZIPPER_WART_DELTAS } else { 0 }
+            | if t.short_heads { ZIPPER_SHORT_HEADS } else { 0 },
         reserved: 0,
     }
 }

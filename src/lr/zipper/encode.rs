@@ -5,8 +5,8 @@
 use super::tables::{plane_array_words, ZipperTables};
 use super::{
     BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, DELTAS, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT,
-    HEAD_WORDS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PREVIOUS, RECORD_WORDS,
-    STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
+    IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PREVIOUS, RECORD_WORDS, SHORT_HEAD_WORDS,
+    STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND, SUPER_SHIFT,
 };
 use crate::corner_table::NONE;
 use crate::error::{Error, Result};
@@ -104,7 +104,10 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
     let m_r = t.m_r;
     let blocks = (m_r as usize).div_ceil(1 << BLOCK_SHIFT);
     let mut planes = Vec::with_capacity(plane_array_words(m_r));
-    let mut heads = vec![0u32; blocks * HEAD_WORDS];
+    let mut heads = Vec::with_capacity(blocks * SHORT_HEAD_WORDS);
+    let mut super_counts = Vec::new();
+    // The exceptions and records before the current superblock.
+    let mut superblock_base = [0u32; 2];
     let (mut exceptions, mut records, mut pairs) = (Vec::new(), Vec::new(), Vec::new());
     // Whether some slot needs the WART_DELTAS reading: only then is the flag set (and the
     // file version 1.8).
@@ -113,14 +116,29 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
     // reads the anchors).
     let mut chain = [0, 1].map(|side| if m_r > 0 { t.tip(0, side) } else { 0 });
     for block in 0..blocks {
-        let head = &mut heads[block * HEAD_WORDS..(block + 1) * HEAD_WORDS];
-        head.copy_from_slice(&[
-            chain[0],
-            chain[1],
-            exceptions.len() as u32,
-            (records.len() / RECORD_WORDS) as u32,
-        ]);
         let first = (block << BLOCK_SHIFT) as u32;
+        // An anchor 16 bits away from the block's first vertex cannot be stored: the chain
+        // restarts at that vertex instead (its first slot then takes an exception unless a
+        // delta reaches its tip from there).
+        let mut anchors = 0;
+        for (side, chain) in chain.iter_mut().enumerate() {
+            let offset = i64::from(*chain) - i64::from(first);
+            let offset = match i16::try_from(offset) {
+                Ok(offset) => offset,
+                Err(_) => {
+                    *chain = first;
+                    0
+                }
+            };
+            anchors |= (offset as u16 as u32) << (16 * side);
+        }
+        let before = [exceptions.len(), records.len() / RECORD_WORDS].map(|n| n as u32);
+        if block > 0 && block % (1 << SUPER_SHIFT) == 0 {
+            super_counts.extend(before);
+            superblock_base = before;
+        }
+        let offsets = [0, 1].map(|k| before[k] - superblock_base[k]);
+        heads.extend([anchors, offsets[0] | offsets[1] << 16]);
         let mut p = [0u128; 3];
         for v in first..m_r.min(first + (1 << BLOCK_SHIFT)) {
             for (side, chain) in chain.iter_mut().enumerate() {
@@ -192,6 +210,7 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
         ring_rank: ring_bits(&t.ring_rank),
         planes,
         heads,
+        super_counts,
         exceptions,
         records,
         pairs,
@@ -203,6 +222,7 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
         m: t.m,
         boundaries_on_ring: t.boundaries_on_ring,
         wart_deltas,
+        short_heads: true,
     };
     same_as_standard(&z, t)?;
     Ok(z)

@@ -64,6 +64,13 @@ pub const PLANE_WORDS: usize = 12;
 /// Words per block in the head array: the left and right anchors, the exceptions and the
 /// records before the block.
 pub const HEAD_WORDS: usize = 4;
+/// Words per block in the head array with `SHORT_HEADS` (version 1.9): the anchors as 16-bit
+/// offsets from the block's first vertex, then the exceptions and records before the block
+/// as 16-bit offsets from those before its superblock.
+pub const SHORT_HEAD_WORDS: usize = 2;
+/// Blocks per superblock: `block >> SUPER_SHIFT` is the superblock of `block`, whose
+/// exceptions and records before it the `SUPER` array holds (from superblock 1 on).
+pub const SUPER_SHIFT: u32 = 8;
 /// Words per record: WART flag and tip, then which opposites are stored and the stored one.
 pub const RECORD_WORDS: usize = 2;
 /// Record word 1, bits 30–31: no opposite stored (both inferred).

@@ -4,7 +4,8 @@
 use super::{
     BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, DELTAS, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT,
     HEAD_WORDS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PLANE_WORDS, PREVIOUS,
-    RECORD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_SECOND,
+    RECORD_WORDS, SHORT_HEAD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_SECOND,
+    SUPER_SHIFT,
 };
 use crate::corner_table::NONE;
 use crate::lr::tables::{LrLayout, LEFT, NULL, VALUE, WART};
@@ -23,7 +24,8 @@ pub struct ZipperTables<W> {
     pub(crate) ring_rank: W,
     /// Per block: the three symbol planes.
     pub(crate) planes: W,
-    /// Per block: the two anchors, the exceptions and the records before it.
+    /// Per block: the two anchors, the exceptions and the records before it (four words; two
+    /// with `short_heads`).
     pub(crate) heads: W,
     /// Exception words: WART flag and tip.
     pub(crate) exceptions: W,
@@ -40,6 +42,9 @@ pub struct ZipperTables<W> {
     pub(crate) t0_explicit: W,
     /// A corner of each isolated vertex (`NONE` for a vertex without triangles).
     pub(crate) c: W,
+    /// With `short_heads`, per superblock from the second: the exceptions and the records
+    /// before it.
+    pub(crate) super_counts: W,
     pub(crate) m_r: u32,
     pub(crate) m: u32,
     /// As [`LrTables`](crate::lr::LrTables)' field: derived, never stored.
@@ -47,6 +52,8 @@ pub struct ZipperTables<W> {
     /// The header's `WART_DELTAS` flag: a delta slot followed on its side by a canonical T2
     /// is a wart.
     pub(crate) wart_deltas: bool,
+    /// The header's `SHORT_HEADS` flag: two-word heads and superblock counts.
+    pub(crate) short_heads: bool,
 }
 
 /// The symbol planes of one block and where a slot lies in them.
@@ -158,9 +165,32 @@ impl<W: Words> ZipperTables<W> {
         self.planes_until(block, groups.min(4) as u32 - 1, 0)
     }
 
+    /// The anchor of side `side`'s chain in block `block`: its value before the block's
+    /// first slot.
     #[inline]
-    fn head(&self, block: usize, k: usize) -> u32 {
-        self.heads.at(block * HEAD_WORDS + k)
+    pub(crate) fn chain_head(&self, block: usize, side: usize) -> u32 {
+        if self.short_heads {
+            let offset = (self.heads.at(SHORT_HEAD_WORDS * block) >> (16 * side)) as u16 as i16;
+            ((block << BLOCK_SHIFT) as u32).wrapping_add_signed(offset as i32)
+        } else {
+            self.heads.at(HEAD_WORDS * block + side)
+        }
+    }
+
+    /// The exception words (`k` 0) or the records (`k` 1) before block `block`.
+    #[inline]
+    pub(crate) fn before_block(&self, block: usize, k: usize) -> usize {
+        if self.short_heads {
+            let offset = (self.heads.at(SHORT_HEAD_WORDS * block + 1) >> (16 * k)) & 0xFFFF;
+            let superblock = block >> SUPER_SHIFT;
+            let base = match superblock {
+                0 => 0,
+                s => self.super_counts.at(2 * (s - 1) + k),
+            };
+            base as usize + offset as usize
+        } else {
+            self.heads.at(HEAD_WORDS * block + 2 + k) as usize
+        }
     }
 
     /// The word holding the WART flag and the tip of exception or irregular slot `bit`.
@@ -168,7 +198,7 @@ impl<W: Words> ZipperTables<W> {
     fn stored_word(&self, slot: &Slot, bit: u32) -> u32 {
         let below = (1u128 << bit) - 1;
         if slot.symbol_at(bit) == EXCEPTION {
-            let x = self.head(slot.block, 2) as usize
+            let x = self.before_block(slot.block, 0)
                 + (slot.exceptions() & below).count_ones() as usize;
             self.exceptions.at(x)
         } else {
@@ -180,7 +210,7 @@ impl<W: Words> ZipperTables<W> {
     #[inline]
     fn record_index(&self, slot: &Slot, bit: u32) -> usize {
         let below = (1u128 << bit) - 1;
-        self.head(slot.block, 3) as usize + (slot.irregular() & below).count_ones() as usize
+        self.before_block(slot.block, 1) + (slot.irregular() & below).count_ones() as usize
     }
 
     /// The tip of a delta slot: its side's chain value after it.
@@ -190,7 +220,7 @@ impl<W: Words> ZipperTables<W> {
         let same = (LEFT_SLOTS << side) & up_to(slot.bit);
         let resets = slot.p[1] & slot.p[2] & same;
         let (base, range) = if resets == 0 {
-            (self.head(slot.block, side), same)
+            (self.chain_head(slot.block, side), same)
         } else {
             let j = 127 - resets.leading_zeros();
             (self.stored_word(slot, j) & VALUE, same & !up_to(j))
@@ -232,6 +262,11 @@ impl<W: Words> ZipperTables<W> {
         }
     }
 
+    /// Whether the header's `SHORT_HEADS` flag is set (version 1.9).
+    pub fn short_heads(&self) -> bool {
+        self.short_heads
+    }
+
     /// Whether the header's `WART_DELTAS` flag is set (version 1.8).
     pub fn wart_deltas(&self) -> bool {
         self.wart_deltas
@@ -260,7 +295,7 @@ impl<W: Words> ZipperTables<W> {
     /// Words of the parts: symbols and heads, exceptions, records, T0 rows.
     pub(crate) fn part_words(&self) -> [usize; 4] {
         [
-            self.planes.count() + self.heads.count(),
+            self.planes.count() + self.heads.count() + self.super_counts.count(),
             self.exceptions.count(),
             self.records.count() + self.pairs.count(),
             self.t0_v.count() + self.t0_codes.count() + self.t0_explicit.count(),

@@ -46,10 +46,12 @@ fn counting<'a>(
         t0_codes: w(&z.t0_codes),
         t0_explicit: w(&z.t0_explicit),
         c: w(&z.c),
+        super_counts: w(&z.super_counts),
         m_r: z.m_r,
         m: z.m,
         boundaries_on_ring: z.boundaries_on_ring,
         wart_deltas: z.wart_deltas,
+        short_heads: z.short_heads,
     }
 }
 
