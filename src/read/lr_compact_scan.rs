@@ -4,7 +4,7 @@
 //! says whether the rules hold: when they do not, the reader's pair-by-pair loop finds the
 //! first fault and names it.
 
-use super::lr_rules::{ring_slot_flags, CANONICAL};
+use super::lr_rules::{ring_slot_flags, BitsSet, CANONICAL};
 use crate::lr::compact::{BLOCK_SHIFT, EXTENDED, WART_LEFT};
 use crate::lr::{CompactTables, LrLayout, NULL};
 use crate::words::{LeUnits, LeWords, Units, Words};
@@ -176,44 +176,15 @@ fn extended_pairs<'b>(pairs: &'b LeWords) -> impl Iterator<Item = u32> + 'b {
     })
 }
 
-/// The set bits of a mask, lowest first.
-struct BitsSet(u64);
-
-impl Iterator for BitsSet {
-    type Item = u32;
-    #[inline]
-    fn next(&mut self) -> Option<u32> {
-        let i = self.0.trailing_zeros();
-        (self.0 != 0).then(|| {
-            self.0 &= self.0 - 1;
-            i
-        })
-    }
-}
-
 #[cfg(all(test, feature = "fuzz-checks"))]
 mod tests {
-    use crate::rng::Rng;
-
-    /// 3,000 bit-efficient LR files with units copied over others and with bytes overwritten
-    /// (checksums recomputed), through the reader: under `cfg(test)` `lr_compact_tables`
-    /// asserts that this fast pass and the pair loop agree on every one, and the fuzz targets
-    /// check it under `cfg(fuzzing)`.
+    /// 3,000 bit-efficient LR files forged (see [`read_forged_files`]): under `cfg(test)`
+    /// `lr_compact_tables` asserts that this fast pass and the pair loop agree on every one,
+    /// and the fuzz targets check it under `cfg(fuzzing)`.
+    ///
+    /// [`read_forged_files`]: crate::read::read_forged_files
     #[test]
     fn the_fast_pass_and_the_pair_loop_agree_on_forged_files() {
-        let mut rng = Rng::new(35);
-        for case in 0..3000 {
-            // Bits 0-2: the bit-efficient LR; the others choose size, holes, order, values.
-            let choice = 0b001 | (rng.below(32) as u8) << 3;
-            let mut data = vec![choice];
-            for _ in 0..4 * (1 + rng.below(4)) {
-                data.push(rng.below(256) as u8);
-            }
-            if case % 2 == 0 {
-                crate::fuzz_checks::operators(&data);
-            } else {
-                crate::fuzz_checks::container_forged(&data);
-            }
-        }
+        crate::read::read_forged_files(0b001, 35, 3000);
     }
 }

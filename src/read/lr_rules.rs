@@ -314,3 +314,18 @@ pub(super) fn check_vertex_corners<M: CornerOps>(
     }
     Ok(())
 }
+
+/// The set bits of a mask, lowest first.
+pub(super) struct BitsSet(pub(super) u64);
+
+impl Iterator for BitsSet {
+    type Item = u32;
+    #[inline]
+    fn next(&mut self) -> Option<u32> {
+        let i = self.0.trailing_zeros();
+        (self.0 != 0).then(|| {
+            self.0 &= self.0 - 1;
+            i
+        })
+    }
+}

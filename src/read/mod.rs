@@ -110,6 +110,28 @@ pub fn open<'a>(bytes: &'a [u8], limits: &Limits) -> Result<Container<'a>> {
     Container::new(Sections::parse(bytes, limits)?, limits, false)
 }
 
+/// Reads `cases` containers of connectivity kind `kind` (bits 0–2 of the fuzz targets' first
+/// byte; the other bits, chosen from `seed`, pick the mesh and options) forged as the fuzz
+/// targets forge them: units copied over others (`operators`) or bytes overwritten
+/// (`container_forged`), the checksums recomputed. For the tests of the readers' fast
+/// passes, which the readers check against their fault-finding loops under `cfg(test)`.
+#[cfg(all(test, feature = "fuzz-checks"))]
+pub(crate) fn read_forged_files(kind: u8, seed: u64, cases: usize) {
+    let mut rng = crate::rng::Rng::new(seed);
+    for case in 0..cases {
+        let choice = kind | (rng.below(32) as u8) << 3;
+        let mut data = vec![choice];
+        for _ in 0..4 * (1 + rng.below(4)) {
+            data.push(rng.below(256) as u8);
+        }
+        if case % 2 == 0 {
+            crate::fuzz_checks::operators(&data);
+        } else {
+            crate::fuzz_checks::container_forged(&data);
+        }
+    }
+}
+
 /// Parses a container and checks every rule of FORMAT.md, the semantic ones included: the
 /// operators' answers are the mesh's.
 ///

@@ -6,7 +6,7 @@ use super::fields::Fields;
 use super::lr_rules::{
     check_rings, check_vertex_corners, ring_slot_flags, verified_boundaries, SlotMap,
 };
-use super::zipper_scan::{block_symbols, scan_slots};
+use super::zipper_scan::{block_symbols, scan_slots, tip_word_holds};
 use super::Sections;
 use crate::corner_table::NONE;
 use crate::error::{Result, Rule};
@@ -329,7 +329,7 @@ fn check_slots(
                         ));
                     }
                     let word = words.at(at);
-                    if word & !(WART | VALUE) != 0 || word & VALUE >= m {
+                    if !tip_word_holds(word, m) {
                         return Err(word_err(
                             array,
                             at,

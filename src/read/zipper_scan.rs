@@ -5,7 +5,7 @@
 //! the rest of the pass). It only says whether the rule holds: when it does not, the
 //! reader's slot-by-slot loop (`check_slots`) finds the first fault and names it.
 
-use super::lr_rules::ring_slot_flags;
+use super::lr_rules::{ring_slot_flags, BitsSet};
 use crate::lr::zipper::{
     Slot, BLOCK_SHIFT, DELTAS, EXCEPTION, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PREVIOUS,
     RECORD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
@@ -54,7 +54,7 @@ fn select(choose: bool, a: u32, b: u32) -> u32 {
 /// Whether an exception word or a record's first word holds only a WART flag and a vertex
 /// below `m`.
 #[inline(always)]
-fn tip_word_holds(word: u32, m: u32) -> bool {
+pub(super) fn tip_word_holds(word: u32, m: u32) -> bool {
     (word & !(WART | VALUE) == 0) & (word & VALUE < m)
 }
 
@@ -239,45 +239,15 @@ pub(super) fn scan_slots(t: &Tables) -> Option<Vec<u8>> {
     (!bad).then_some(flags)
 }
 
-/// The set bits of a mask, lowest first.
-struct BitsSet(u64);
-
-impl Iterator for BitsSet {
-    type Item = u32;
-    #[inline]
-    fn next(&mut self) -> Option<u32> {
-        let i = self.0.trailing_zeros();
-        (self.0 != 0).then(|| {
-            self.0 &= self.0 - 1;
-            i
-        })
-    }
-}
-
 #[cfg(all(test, feature = "fuzz-checks"))]
 mod tests {
-    use crate::rng::Rng;
-
-    /// 1,500 Zipper files with units copied over others and with bytes overwritten (checksums
-    /// recomputed), through the reader: under `cfg(test)` `zipper_tables` asserts that this
-    /// fast pass and the slot loop agree on every one, and the fuzz targets check it under
-    /// `cfg(fuzzing)`.
+    /// 1,500 Zipper files forged (see [`read_forged_files`]): under `cfg(test)`
+    /// `zipper_tables` asserts that this fast pass and the slot loop agree on every one, and
+    /// the fuzz targets check it under `cfg(fuzzing)`.
+    ///
+    /// [`read_forged_files`]: crate::read::read_forged_files
     #[test]
     fn the_fast_pass_and_the_slot_loop_agree_on_forged_files() {
-        let mut rng = Rng::new(58);
-        for case in 0..1500 {
-            // Bits 0-2: the Zipper kind; the others choose size, holes, order and values.
-            let choice = 0b101 | (rng.below(32) as u8) << 3;
-            let mut data = vec![choice];
-            for _ in 0..4 * (1 + rng.below(4)) {
-                data.push(rng.below(256) as u8);
-            }
-            if case % 2 == 0 {
-                crate::fuzz_checks::operators(&data);
-            } else {
-                // Section index 0 to 7, then offset and value.
-                crate::fuzz_checks::container_forged(&data);
-            }
-        }
+        crate::read::read_forged_files(0b101, 58, 1500);
     }
 }
