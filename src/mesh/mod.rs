@@ -1,11 +1,13 @@
 //! The indexed triangle mesh that every importer produces and every representation starts from.
 
 mod attribute;
+mod locality;
 mod orient;
 mod parts;
 pub(crate) mod seams;
 
 pub use attribute::{Attribute, ComponentType, Semantic, Values};
+pub(crate) use locality::{Order, LOCALITY_TRIANGLES};
 pub(crate) use orient::reverse_triangle;
 pub use orient::{orient, reversed, Oriented};
 pub use parts::{Part, Parts};

@@ -16,7 +16,7 @@ use crate::error::{Error, Result};
 use crate::format::layout::{write_fields, MeshRecord};
 use crate::format::{Flags, Metadata, Tag};
 use crate::lr::{CompactLr, CompactOptions, Lr, LrOptions, Zipper};
-use crate::mesh::Oriented;
+use crate::mesh::{Order, Oriented, LOCALITY_TRIANGLES};
 use crate::strips::{Cts, StripOptions};
 use crate::Mesh;
 use connectivity::Encoded;
@@ -193,6 +193,9 @@ pub fn encode_owned(mut mesh: Mesh, options: &EncodeOptions) -> Result<Vec<u8>> 
         return encode(&mesh, options);
     }
     mesh.validate()?;
+    if let Some(order) = locality_order(&mesh, options) {
+        mesh = order.apply(&mesh);
+    }
     // The triangles become the table's `V`: held once, not twice.
     let owned = std::mem::take(&mut mesh.triangles);
     let triangles = owned.len();
@@ -243,9 +246,32 @@ fn table_sections(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<SectionByt
     table_sections_of(mesh, options, None)
 }
 
+/// The cache-friendly order a large mesh is encoded in when its own need not be kept
+/// ([`crate::mesh::Order`]): building its connectivity then walks memory in order.
+fn locality_order(mesh: &Mesh, options: &EncodeOptions) -> Option<Order> {
+    let large = mesh.triangles.len() >= LOCALITY_TRIANGLES;
+    (large && !options.keep_order).then(|| Order::of(mesh))
+}
+
 /// Every section of `mesh` (validated) from the corner table built here, owned so that it
-/// is freed once the connectivity is built; `flipped` as [`sections`] takes it.
+/// is freed once the connectivity is built; `flipped` as [`sections`] takes it. A large mesh
+/// is put in a cache-friendly order first ([`locality_order`]).
 fn table_sections_of(
+    mesh: &Mesh,
+    options: &EncodeOptions,
+    flipped: Option<&[bool]>,
+) -> Result<Vec<SectionBytes>> {
+    if let Some(order) = locality_order(mesh, options) {
+        let mesh = order.apply(mesh);
+        let flipped = flipped.map(|f| order.per_triangle(f));
+        drop(order);
+        return ordered_sections(&mesh, options, flipped.as_deref());
+    }
+    ordered_sections(mesh, options, flipped)
+}
+
+/// [`table_sections_of`] in the mesh's order.
+fn ordered_sections(
     mesh: &Mesh,
     options: &EncodeOptions,
     flipped: Option<&[bool]>,
@@ -572,5 +598,26 @@ fn plain_or_coded(
             (coded, Flags::REQUIRED, c)
         }
         _ => (plain, Flags::REQUIRED, payload),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The order is taken from 2^17 triangles on, and never when the input's order is kept.
+    #[test]
+    fn large_meshes_take_the_locality_order_unless_theirs_is_kept() {
+        let options = EncodeOptions::default();
+        let keep = EncodeOptions {
+            keep_order: true,
+            ..EncodeOptions::default()
+        };
+        let large = crate::generate::irregular_torus(LOCALITY_TRIANGLES as u32, 1);
+        let small = crate::generate::irregular_torus(LOCALITY_TRIANGLES as u32 - 1000, 1);
+        assert!(small.triangles.len() < LOCALITY_TRIANGLES);
+        assert!(locality_order(&large, &options).is_some());
+        assert!(locality_order(&large, &keep).is_none());
+        assert!(locality_order(&small, &options).is_none());
     }
 }
