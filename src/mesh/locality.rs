@@ -10,14 +10,14 @@ use super::{Attribute, Mesh, Values};
 
 /// Meshes of fewer triangles keep their order: their arrays fit in the caches, and small
 /// files come out as they always did.
-pub(crate) const LOCALITY_TRIANGLES: usize = 1 << 17;
+pub const LOCALITY_TRIANGLES: usize = 1 << 17;
 
 /// Bits of each coordinate in a vertex's Morton key (three of them fit in 32 bits).
 const AXIS_BITS: u32 = 10;
 
 /// A new order of a mesh's vertices and triangles.
 #[derive(Debug, Clone)]
-pub(crate) struct Order {
+pub struct Order {
     /// `old_vertex[i]`: the vertex that becomes vertex `i`.
     old_vertex: Vec<u32>,
     /// `new_vertex[v]`: the new id of vertex `v` (the inverse of `old_vertex`).
@@ -30,7 +30,7 @@ impl Order {
     /// The order of `mesh` (valid: every index in range, fewer than `u32::MAX` vertices):
     /// vertices by Morton key (ties by id), triangles by their smallest new vertex id (ties
     /// by id). Linear time: two radix passes over the keys and a counting sort.
-    pub(crate) fn of(mesh: &Mesh) -> Order {
+    pub fn of(mesh: &Mesh) -> Order {
         let keys = morton_keys(&mesh.positions);
         let old_vertex = sorted_by_key(&keys);
         drop(keys);
@@ -65,7 +65,7 @@ impl Order {
     }
 
     /// `mesh` in this order (the order of `mesh`, or of a mesh of the same counts).
-    pub(crate) fn apply(&self, mesh: &Mesh) -> Mesh {
+    pub fn apply(&self, mesh: &Mesh) -> Mesh {
         let triangles = self
             .old_triangle
             .iter()
@@ -85,7 +85,7 @@ impl Order {
     }
 
     /// Per-triangle `values` (one each) in the new triangle order.
-    pub(crate) fn per_triangle<T: Copy>(&self, values: &[T]) -> Vec<T> {
+    pub fn per_triangle<T: Copy>(&self, values: &[T]) -> Vec<T> {
         gather(values, 1, &self.old_triangle)
     }
 

@@ -193,7 +193,7 @@ pub fn encode_owned(mut mesh: Mesh, options: &EncodeOptions) -> Result<Vec<u8>> 
         return encode(&mesh, options);
     }
     mesh.validate()?;
-    if let Some(order) = locality_order(&mesh, options) {
+    if let Some(order) = encoding_order(&mesh, options) {
         mesh = order.apply(&mesh);
     }
     // The triangles become the table's `V`: held once, not twice.
@@ -246,22 +246,25 @@ fn table_sections(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<SectionByt
     table_sections_of(mesh, options, None)
 }
 
-/// The cache-friendly order a large mesh is encoded in when its own need not be kept
-/// ([`crate::mesh::Order`]): building its connectivity then walks memory in order.
-fn locality_order(mesh: &Mesh, options: &EncodeOptions) -> Option<Order> {
+/// The order the encoders put `mesh` in before building its connectivity: a cache-friendly
+/// one ([`Order`]) for a mesh of [`LOCALITY_TRIANGLES`] or more whose own order need not be
+/// kept, so that the construction walks memory in order; `None` when the mesh is encoded in
+/// its own order. A tool that reports on what `encode` builds (sizes, rings) builds from
+/// `order.apply(mesh)` too.
+pub fn encoding_order(mesh: &Mesh, options: &EncodeOptions) -> Option<Order> {
     let large = mesh.triangles.len() >= LOCALITY_TRIANGLES;
     (large && !options.keep_order).then(|| Order::of(mesh))
 }
 
 /// Every section of `mesh` (validated) from the corner table built here, owned so that it
 /// is freed once the connectivity is built; `flipped` as [`sections`] takes it. A large mesh
-/// is put in a cache-friendly order first ([`locality_order`]).
+/// is put in a cache-friendly order first ([`encoding_order`]).
 fn table_sections_of(
     mesh: &Mesh,
     options: &EncodeOptions,
     flipped: Option<&[bool]>,
 ) -> Result<Vec<SectionBytes>> {
-    if let Some(order) = locality_order(mesh, options) {
+    if let Some(order) = encoding_order(mesh, options) {
         let mesh = order.apply(mesh);
         let flipped = flipped.map(|f| order.per_triangle(f));
         drop(order);
@@ -616,8 +619,8 @@ mod tests {
         let large = crate::generate::irregular_torus(LOCALITY_TRIANGLES as u32, 1);
         let small = crate::generate::irregular_torus(LOCALITY_TRIANGLES as u32 - 1000, 1);
         assert!(small.triangles.len() < LOCALITY_TRIANGLES);
-        assert!(locality_order(&large, &options).is_some());
-        assert!(locality_order(&large, &keep).is_none());
-        assert!(locality_order(&small, &options).is_none());
+        assert!(encoding_order(&large, &options).is_some());
+        assert!(encoding_order(&large, &keep).is_none());
+        assert!(encoding_order(&small, &options).is_none());
     }
 }

@@ -72,6 +72,15 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
     } else {
         mesh
     };
+    // The order `encode` builds from, so that the figures are those of the file it writes.
+    let mesh = match lrmesh::write::encoding_order(&mesh, &Default::default()) {
+        Some(order) => {
+            let ordered = order.apply(&mesh);
+            drop(mesh);
+            ordered
+        }
+        None => mesh,
+    };
     let lr_options = LrOptions {
         tries: args.tries,
         seed: args.seed,
