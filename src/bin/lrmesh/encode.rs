@@ -153,6 +153,17 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
         .then(|| args.input.path.file_name())
         .flatten()
         .map(|n| n.to_string_lossy().into_owned());
+    // In the order the writer takes (it keeps the order it is given then), so that the
+    // topology report below walks memory in order too: on a large mesh in scattered order it
+    // took a third of the command's time.
+    let mesh = match write::encoding_order(&mesh, &options) {
+        Some(order) => {
+            let ordered = order.apply(&mesh);
+            drop(mesh);
+            ordered
+        }
+        None => mesh,
+    };
     // Oriented here once, for the report and for the writer.
     let oriented = args.orient.then(|| lrmesh::mesh::orient(&mesh));
     let orientation = oriented.as_ref().map(|o| Orientation {
