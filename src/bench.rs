@@ -370,7 +370,8 @@ pub fn run(
     options: &BenchOptions,
     progress: &mut dyn FnMut(&str),
 ) -> Result<BenchReport> {
-    let ordered = write::encoding_order(mesh, &EncodeOptions::default()).map(|o| o.apply(mesh));
+    let order = write::encoding_order(mesh, &EncodeOptions::default())?;
+    let ordered = order.map(|o| o.apply_valid(mesh));
     let mesh = ordered.as_ref().unwrap_or(mesh);
     let runs = options.runs.max(1);
     let n = mesh.triangles.len();

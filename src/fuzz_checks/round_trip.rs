@@ -8,7 +8,7 @@
 use arbitrary::{Result, Unstructured};
 
 use crate::lr::LrOptions;
-use crate::mesh::{Attribute, Part, Parts, Semantic};
+use crate::mesh::{Attribute, Order, Part, Parts, Semantic};
 use crate::read::{open, Limits};
 use crate::write::{encode, Connectivity, EncodeOptions};
 use crate::Mesh;
@@ -279,6 +279,16 @@ pub fn round_trip(data: &[u8]) {
         return;
     };
     let bytes = encode(&mesh, &options).expect("a valid mesh encodes");
+    // The order large meshes are encoded in (below its size here) loses nothing, and a mesh
+    // in that order keeps it.
+    let ordered = Order::of(&mesh).expect("a valid mesh has an order");
+    let moved = ordered.apply(&mesh).expect("of the same counts");
+    assert_same_up_to_order(&moved, &mesh);
+    let again = Order::of(&moved).and_then(|o| o.apply(&moved));
+    assert!(
+        again.expect("valid") == moved,
+        "the order of an ordered mesh is itself"
+    );
     // Quantized attribute values come back as `dequantized` says (their error bounds:
     // `tests/attributes.rs`).
     mesh = crate::write::dequantized(&mesh, &options).expect("bits in range");

@@ -7,6 +7,7 @@
 //! triangle, attribute value and part label moves, none changes.
 
 use super::{Attribute, Mesh, Values};
+use crate::error::{Error, Result};
 
 /// Meshes of fewer triangles keep their order: their arrays fit in the caches, and small
 /// files come out as they always did.
@@ -27,10 +28,37 @@ pub struct Order {
 }
 
 impl Order {
-    /// The order of `mesh` (valid: every index in range, fewer than `u32::MAX` vertices):
-    /// vertices by Morton key (ties by id), triangles by their smallest new vertex id (ties
-    /// by id). Linear time: two radix passes over the keys and a counting sort.
-    pub fn of(mesh: &Mesh) -> Order {
+    /// The order of `mesh`: vertices by Morton key (ties by id), triangles by their smallest
+    /// new vertex id (ties by id). Linear time: two radix passes over the keys and a counting
+    /// sort.
+    ///
+    /// # Errors
+    /// [`Error::InvalidMesh`] for a mesh that breaks [`Mesh::validate`].
+    pub fn of(mesh: &Mesh) -> Result<Order> {
+        mesh.validate()?;
+        Ok(Order::of_valid(mesh))
+    }
+
+    /// `mesh` in this order, the order of a mesh of the same vertex and triangle counts.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when the counts differ; [`Error::InvalidMesh`] for a mesh
+    /// that breaks [`Mesh::validate`].
+    pub fn apply(&self, mesh: &Mesh) -> Result<Mesh> {
+        let (v, t) = (self.new_vertex.len(), self.old_triangle.len());
+        if mesh.positions.len() != v || mesh.triangles.len() != t {
+            return Err(Error::InvalidArgument(format!(
+                "an order of {v} vertices and {t} triangles applied to a mesh of {} and {}",
+                mesh.positions.len(),
+                mesh.triangles.len()
+            )));
+        }
+        mesh.validate()?;
+        Ok(self.apply_valid(mesh))
+    }
+
+    /// [`Order::of`] of a mesh known to be valid (the writer's, validated already).
+    pub(crate) fn of_valid(mesh: &Mesh) -> Order {
         let keys = morton_keys(&mesh.positions);
         let old_vertex = sorted_by_key(&keys);
         drop(keys);
@@ -64,8 +92,8 @@ impl Order {
         }
     }
 
-    /// `mesh` in this order (the order of `mesh`, or of a mesh of the same counts).
-    pub fn apply(&self, mesh: &Mesh) -> Mesh {
+    /// [`Order::apply`] to a valid mesh of this order's counts.
+    pub(crate) fn apply_valid(&self, mesh: &Mesh) -> Mesh {
         let triangles = self
             .old_triangle
             .iter()
@@ -246,8 +274,8 @@ mod tests {
     #[test]
     fn vertices_follow_the_curve_and_triangles_their_first_vertex() {
         let mesh = scattered();
-        let order = Order::of(&mesh);
-        let moved = order.apply(&mesh);
+        let order = Order::of(&mesh).unwrap();
+        let moved = order.apply(&mesh).unwrap();
         moved.validate().unwrap();
         let xs: Vec<f32> = moved.positions.iter().map(|p| p[0]).collect();
         assert_eq!(xs, [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 9.0]);
@@ -265,9 +293,31 @@ mod tests {
 
     #[test]
     fn the_order_of_an_ordered_mesh_is_itself() {
-        let moved = Order::of(&scattered()).apply(&scattered());
-        let again = Order::of(&moved).apply(&moved);
+        let moved = Order::of(&scattered())
+            .unwrap()
+            .apply(&scattered())
+            .unwrap();
+        let again = Order::of(&moved).unwrap().apply(&moved).unwrap();
         assert_eq!(again, moved);
+    }
+
+    #[test]
+    fn invalid_meshes_and_other_counts_get_errors() {
+        let mesh = scattered();
+        let order = Order::of(&mesh).unwrap();
+        let mut broken = mesh.clone();
+        broken.triangles[1][2] = 7;
+        assert!(matches!(Order::of(&broken), Err(Error::InvalidMesh(_))));
+        assert!(matches!(order.apply(&broken), Err(Error::InvalidMesh(_))));
+        let mut fewer = mesh.clone();
+        fewer.triangles.pop();
+        assert!(matches!(
+            order.apply(&fewer),
+            Err(Error::InvalidArgument(_))
+        ));
+        let mut more = mesh;
+        more.positions.push([0.0; 3]);
+        assert!(matches!(order.apply(&more), Err(Error::InvalidArgument(_))));
     }
 
     #[test]

@@ -193,8 +193,8 @@ pub fn encode_owned(mut mesh: Mesh, options: &EncodeOptions) -> Result<Vec<u8>> 
         return encode(&mesh, options);
     }
     mesh.validate()?;
-    if let Some(order) = encoding_order(&mesh, options) {
-        mesh = order.apply(&mesh);
+    if let Some(order) = valid_encoding_order(&mesh, options) {
+        mesh = order.apply_valid(&mesh);
     }
     // The triangles become the table's `V`: held once, not twice.
     let owned = std::mem::take(&mut mesh.triangles);
@@ -251,9 +251,24 @@ fn table_sections(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<SectionByt
 /// kept, so that the construction walks memory in order; `None` when the mesh is encoded in
 /// its own order. A tool that reports on what `encode` builds (sizes, rings) builds from
 /// `order.apply(mesh)` too.
-pub fn encoding_order(mesh: &Mesh, options: &EncodeOptions) -> Option<Order> {
-    let large = mesh.triangles.len() >= LOCALITY_TRIANGLES;
-    (large && !options.keep_order).then(|| Order::of(mesh))
+///
+/// # Errors
+/// [`Error::InvalidMesh`] for a mesh that would take an order but breaks [`Mesh::validate`].
+pub fn encoding_order(mesh: &Mesh, options: &EncodeOptions) -> Result<Option<Order>> {
+    if !takes_order(mesh, options) {
+        return Ok(None);
+    }
+    Order::of(mesh).map(Some)
+}
+
+/// Whether [`encoding_order`] gives an order.
+fn takes_order(mesh: &Mesh, options: &EncodeOptions) -> bool {
+    mesh.triangles.len() >= LOCALITY_TRIANGLES && !options.keep_order
+}
+
+/// [`encoding_order`] of a valid mesh.
+fn valid_encoding_order(mesh: &Mesh, options: &EncodeOptions) -> Option<Order> {
+    takes_order(mesh, options).then(|| Order::of_valid(mesh))
 }
 
 /// Every section of `mesh` (validated) from the corner table built here, owned so that it
@@ -264,8 +279,8 @@ fn table_sections_of(
     options: &EncodeOptions,
     flipped: Option<&[bool]>,
 ) -> Result<Vec<SectionBytes>> {
-    if let Some(order) = encoding_order(mesh, options) {
-        let mesh = order.apply(mesh);
+    if let Some(order) = valid_encoding_order(mesh, options) {
+        let mesh = order.apply_valid(mesh);
         let flipped = flipped.map(|f| order.per_triangle(f));
         drop(order);
         return ordered_sections(&mesh, options, flipped.as_deref());
@@ -619,8 +634,15 @@ mod tests {
         let large = crate::generate::irregular_torus(LOCALITY_TRIANGLES as u32, 1);
         let small = crate::generate::irregular_torus(LOCALITY_TRIANGLES as u32 - 1000, 1);
         assert!(small.triangles.len() < LOCALITY_TRIANGLES);
-        assert!(encoding_order(&large, &options).is_some());
-        assert!(encoding_order(&large, &keep).is_none());
-        assert!(encoding_order(&small, &options).is_none());
+        assert!(encoding_order(&large, &options).unwrap().is_some());
+        assert!(encoding_order(&large, &keep).unwrap().is_none());
+        assert!(encoding_order(&small, &options).unwrap().is_none());
+        // A large mesh that is not valid gets an error, not an order.
+        let mut broken = large.clone();
+        broken.triangles[7][1] = broken.positions.len() as u32;
+        assert!(matches!(
+            encoding_order(&broken, &options),
+            Err(Error::InvalidMesh(_))
+        ));
     }
 }

@@ -156,9 +156,9 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
     // In the order the writer takes (it keeps the order it is given then), so that the
     // topology report below walks memory in order too: on a large mesh in scattered order it
     // took a third of the command's time.
-    let mesh = match write::encoding_order(&mesh, &options) {
+    let mesh = match write::encoding_order(&mesh, &options)? {
         Some(order) => {
-            let ordered = order.apply(&mesh);
+            let ordered = order.apply(&mesh)?;
             drop(mesh);
             ordered
         }

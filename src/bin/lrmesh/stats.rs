@@ -73,9 +73,9 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
         mesh
     };
     // The order `encode` builds from, so that the figures are those of the file it writes.
-    let mesh = match lrmesh::write::encoding_order(&mesh, &Default::default()) {
+    let mesh = match lrmesh::write::encoding_order(&mesh, &Default::default())? {
         Some(order) => {
-            let ordered = order.apply(&mesh);
+            let ordered = order.apply(&mesh)?;
             drop(mesh);
             ordered
         }
