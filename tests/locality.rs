@@ -63,6 +63,12 @@ fn shuffle(mesh: &mut Mesh, rng: &mut Rng) {
     }
 }
 
+/// `mesh` encoded with `options` and decoded.
+fn decoded(mesh: &Mesh, options: &EncodeOptions) -> Mesh {
+    let bytes = encode(mesh, options).unwrap();
+    open(&bytes, &Limits::default()).unwrap().to_mesh()
+}
+
 #[test]
 fn a_large_mesh_loses_nothing_in_any_kind_with_or_without_its_order() {
     let mesh = large();
@@ -74,8 +80,7 @@ fn a_large_mesh_loses_nothing_in_any_kind_with_or_without_its_order() {
                 keep_order,
                 ..EncodeOptions::default()
             };
-            let bytes = encode(&mesh, &options).unwrap();
-            let back = open(&bytes, &Limits::default()).unwrap().to_mesh();
+            let back = decoded(&mesh, &options);
             if keep_order {
                 assert_same_in_order(&back, &mesh);
             } else {
@@ -103,10 +108,7 @@ fn recorded_flips_follow_their_triangles() {
             orient: Orient::Repair,
             ..EncodeOptions::default()
         };
-        let back = open(&encode(&mesh, &options).unwrap(), &Limits::default())
-            .unwrap()
-            .to_mesh();
-        assert_same_up_to_order(&back, &mesh);
+        assert_same_up_to_order(&decoded(&mesh, &options), &mesh);
     }
 }
 

@@ -284,6 +284,13 @@ pub fn round_trip(data: &[u8]) {
     let ordered = Order::of(&mesh).expect("a valid mesh has an order");
     let moved = ordered.apply(&mesh).expect("of the same counts");
     assert_same_up_to_order(&moved, &mesh);
+    assert!(crate::mesh::is_in_order(&moved), "an ordered mesh says so");
+    if crate::mesh::is_in_order(&mesh) {
+        assert!(
+            moved == mesh,
+            "a mesh that says it is in order is left as it is"
+        );
+    }
     let again = Order::of(&moved).and_then(|o| o.apply(&moved));
     assert!(
         again.expect("valid") == moved,

@@ -157,33 +157,69 @@ fn gather<T: Copy>(values: &[T], n: usize, order: &[u32]) -> Vec<T> {
     out
 }
 
-/// Each position's Morton key: its cell in a grid of 2^10 steps per axis over the bounding
-/// box, the coordinates' bits interleaved (x lowest).
-fn morton_keys(positions: &[[f32; 3]]) -> Vec<u32> {
-    let mut low = [f64::INFINITY; 3];
-    let mut high = [f64::NEG_INFINITY; 3];
-    for p in positions {
-        for i in 0..3 {
-            low[i] = low[i].min(f64::from(p[i]));
-            high[i] = high[i].max(f64::from(p[i]));
+/// Morton keys over a bounding box: a position's cell in a grid of 2^10 steps per axis, the
+/// coordinates' bits interleaved (x lowest).
+struct Grid {
+    low: [f64; 3],
+    scale: [f64; 3],
+}
+
+impl Grid {
+    fn of(positions: &[[f32; 3]]) -> Grid {
+        let mut low = [f64::INFINITY; 3];
+        let mut high = [f64::NEG_INFINITY; 3];
+        for p in positions {
+            for i in 0..3 {
+                low[i] = low[i].min(f64::from(p[i]));
+                high[i] = high[i].max(f64::from(p[i]));
+            }
         }
+        // A flat box (or a single point) puts every coordinate of that axis in cell 0.
+        let scale = std::array::from_fn(|i| match high[i] - low[i] {
+            extent if extent > 0.0 => f64::from(CELLS) / extent,
+            _ => 0.0,
+        });
+        Grid { low, scale }
     }
-    let cells = f64::from((1u32 << AXIS_BITS) - 1);
-    // A flat box (or a single point) puts every coordinate of that axis in cell 0.
-    let scale = std::array::from_fn::<f64, 3, _>(|i| match high[i] - low[i] {
-        extent if extent > 0.0 => cells / extent,
-        _ => 0.0,
-    });
-    positions
-        .iter()
-        .map(|p| {
-            (0..3).fold(0u32, |key, i| {
-                // `as` saturates, and the scale keeps the cell within 0..=cells anyway.
-                let cell = ((f64::from(p[i]) - low[i]) * scale[i]) as u32;
-                key | spread(cell.min(cells as u32)) << i
-            })
+
+    fn key(&self, p: &[f32; 3]) -> u32 {
+        (0..3).fold(0u32, |key, i| {
+            // `as` saturates, and the scale keeps the cell within 0..=CELLS anyway.
+            let cell = ((f64::from(p[i]) - self.low[i]) * self.scale[i]) as u32;
+            key | spread(cell.min(CELLS)) << i
         })
-        .collect()
+    }
+}
+
+/// The last cell of an axis.
+const CELLS: u32 = (1 << AXIS_BITS) - 1;
+
+/// Each position's Morton key ([`Grid`]).
+fn morton_keys(positions: &[[f32; 3]]) -> Vec<u32> {
+    let grid = Grid::of(positions);
+    positions.iter().map(|p| grid.key(p)).collect()
+}
+
+/// Whether [`Order::of`] of `mesh` would leave it as it is (vertex keys and triangles' first
+/// vertices never decrease): two passes without allocating, so that a mesh put in order
+/// already (by a caller that needed the order first) is not copied again. Any mesh: an
+/// index out of range is compared, never used.
+pub(crate) fn is_in_order(mesh: &Mesh) -> bool {
+    let grid = Grid::of(&mesh.positions);
+    let keys = mesh.positions.iter().map(|p| grid.key(p));
+    let firsts = mesh.triangles.iter().map(|t| t[0].min(t[1]).min(t[2]));
+    non_decreasing(keys) && non_decreasing(firsts)
+}
+
+fn non_decreasing(mut values: impl Iterator<Item = u32>) -> bool {
+    let Some(mut last) = values.next() else {
+        return true;
+    };
+    values.all(|x| {
+        let ok = last <= x;
+        last = x;
+        ok
+    })
 }
 
 /// The low 10 bits of `x`, two zero bits after each.
@@ -293,10 +329,12 @@ mod tests {
 
     #[test]
     fn the_order_of_an_ordered_mesh_is_itself() {
+        assert!(!is_in_order(&scattered()));
         let moved = Order::of(&scattered())
             .unwrap()
             .apply(&scattered())
             .unwrap();
+        assert!(is_in_order(&moved));
         let again = Order::of(&moved).unwrap().apply(&moved).unwrap();
         assert_eq!(again, moved);
     }

@@ -7,6 +7,7 @@ mod parts;
 pub(crate) mod seams;
 
 pub use attribute::{Attribute, ComponentType, Semantic, Values};
+pub(crate) use locality::is_in_order;
 pub use locality::{Order, LOCALITY_TRIANGLES};
 pub(crate) use orient::reverse_triangle;
 pub use orient::{orient, reversed, Oriented};

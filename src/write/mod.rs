@@ -16,7 +16,7 @@ use crate::error::{Error, Result};
 use crate::format::layout::{write_fields, MeshRecord};
 use crate::format::{Flags, Metadata, Tag};
 use crate::lr::{CompactLr, CompactOptions, Lr, LrOptions, Zipper};
-use crate::mesh::{Order, Oriented, LOCALITY_TRIANGLES};
+use crate::mesh::{is_in_order, Order, Oriented, LOCALITY_TRIANGLES};
 use crate::strips::{Cts, StripOptions};
 use crate::Mesh;
 use connectivity::Encoded;
@@ -249,8 +249,9 @@ fn table_sections(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<SectionByt
 /// The order the encoders put `mesh` in before building its connectivity: a cache-friendly
 /// one ([`Order`]) for a mesh of [`LOCALITY_TRIANGLES`] or more whose own order need not be
 /// kept, so that the construction walks memory in order; `None` when the mesh is encoded in
-/// its own order. A tool that reports on what `encode` builds (sizes, rings) builds from
-/// `order.apply(mesh)` too.
+/// its own order (small, kept, or in that order already). A tool that reports on what
+/// `encode` builds (sizes, rings) builds from `order.apply(mesh)` too
+/// ([`in_encoding_order`]).
 ///
 /// # Errors
 /// [`Error::InvalidMesh`] for a mesh that would take an order but breaks [`Mesh::validate`].
@@ -261,9 +262,21 @@ pub fn encoding_order(mesh: &Mesh, options: &EncodeOptions) -> Result<Option<Ord
     Order::of(mesh).map(Some)
 }
 
+/// `mesh` in the order [`encoding_order`] gives, the original freed once the copy is made;
+/// the encoders keep the order of what this returns.
+///
+/// # Errors
+/// As [`encoding_order`].
+pub fn in_encoding_order(mesh: Mesh, options: &EncodeOptions) -> Result<Mesh> {
+    Ok(match encoding_order(&mesh, options)? {
+        Some(order) => order.apply_valid(&mesh),
+        None => mesh,
+    })
+}
+
 /// Whether [`encoding_order`] gives an order.
 fn takes_order(mesh: &Mesh, options: &EncodeOptions) -> bool {
-    mesh.triangles.len() >= LOCALITY_TRIANGLES && !options.keep_order
+    mesh.triangles.len() >= LOCALITY_TRIANGLES && !options.keep_order && !is_in_order(mesh)
 }
 
 /// [`encoding_order`] of a valid mesh.
@@ -637,6 +650,10 @@ mod tests {
         assert!(encoding_order(&large, &options).unwrap().is_some());
         assert!(encoding_order(&large, &keep).unwrap().is_none());
         assert!(encoding_order(&small, &options).unwrap().is_none());
+        // One in that order already is encoded as it is.
+        let ordered = in_encoding_order(large.clone(), &options).unwrap();
+        assert_ne!(ordered, large);
+        assert!(encoding_order(&ordered, &options).unwrap().is_none());
         // A large mesh that is not valid gets an error, not an order.
         let mut broken = large.clone();
         broken.triangles[7][1] = broken.positions.len() as u32;

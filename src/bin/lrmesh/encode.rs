@@ -156,14 +156,7 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
     // In the order the writer takes (it keeps the order it is given then), so that the
     // topology report below walks memory in order too: on a large mesh in scattered order it
     // took a third of the command's time.
-    let mesh = match write::encoding_order(&mesh, &options)? {
-        Some(order) => {
-            let ordered = order.apply(&mesh)?;
-            drop(mesh);
-            ordered
-        }
-        None => mesh,
-    };
+    let mesh = write::in_encoding_order(mesh, &options)?;
     // Oriented here once, for the report and for the writer.
     let oriented = args.orient.then(|| lrmesh::mesh::orient(&mesh));
     let orientation = oriented.as_ref().map(|o| Orientation {

@@ -73,14 +73,7 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
         mesh
     };
     // The order `encode` builds from, so that the figures are those of the file it writes.
-    let mesh = match lrmesh::write::encoding_order(&mesh, &Default::default())? {
-        Some(order) => {
-            let ordered = order.apply(&mesh)?;
-            drop(mesh);
-            ordered
-        }
-        None => mesh,
-    };
+    let mesh = lrmesh::write::in_encoding_order(mesh, &Default::default())?;
     let lr_options = LrOptions {
         tries: args.tries,
         seed: args.seed,
