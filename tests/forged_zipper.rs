@@ -20,27 +20,55 @@ const T0_CODES: usize = 9;
 const EXPLICIT: usize = 10;
 const C: usize = 11;
 
-/// Byte offset within `ZIPR` of element `i` of array `index`.
-fn zipr_word(p: &[u8], index: usize, i: usize) -> usize {
-    ZiprHeader::read(p).layout().unwrap().arrays[index].at(i)
+/// Where element `i` of array `index` lies within `ZIPR`: its first bit and its width. The
+/// seven lists (`EXCEPTIONS` to `C`) are bit fields with `PACKED_LISTS` (FORMAT.md §3.5e),
+/// the other arrays and every array of an older file 32-bit words.
+fn zipr_bits(p: &[u8], index: usize, i: usize) -> (usize, u32) {
+    let header = ZiprHeader::read(p);
+    let start = 8 * header.layout().unwrap().arrays[index].start;
+    if !(EXCEPTIONS..=C).contains(&index) {
+        return (start + 32 * i, 32);
+    }
+    let fields = header.list_fields()[index - EXCEPTIONS];
+    let [a, b] = fields.map(|f| f.width as usize);
+    (
+        start + i / 2 * (a + b) + i % 2 * a,
+        fields[i % 2].width as u32,
+    )
 }
 
-/// File offset of element `i` of array `index` of `ZIPR`.
+/// The width in bits of element `i` of array `index`.
+fn zipr_width(bytes: &[u8], index: usize, i: usize) -> u32 {
+    zipr_bits(&payload(bytes, Tag::ZIPR), index, i).1
+}
+
+/// File offset of the byte holding the first bit of element `i` of array `index` of `ZIPR`.
 fn zipr_at(bytes: &[u8], index: usize, i: usize) -> u64 {
-    section_at(bytes, Tag::ZIPR) + zipr_word(&payload(bytes, Tag::ZIPR), index, i) as u64
+    let bit = zipr_bits(&payload(bytes, Tag::ZIPR), index, i).0;
+    section_at(bytes, Tag::ZIPR) + (bit / 8) as u64
 }
 
-/// Element `i` of array `index`.
+/// Element `i` of array `index`: a word, or a list's field as stored.
 fn zipr_get(bytes: &[u8], index: usize, i: usize) -> u32 {
     let p = payload(bytes, Tag::ZIPR);
-    get(&p, zipr_word(&p, index, i))
+    let (bit, width) = zipr_bits(&p, index, i);
+    (0..width as usize).fold(0, |x, k| {
+        x | ((p[(bit + k) / 8] >> ((bit + k) % 8)) as u32 & 1) << k
+    })
 }
 
-/// `bytes` with element `i` of array `index` set to `x`.
+/// `bytes` with element `i` of array `index` set to `x` (a list's field as stored).
 fn zipr_set(bytes: &[u8], index: usize, i: usize, x: u32) -> Vec<u8> {
     forge(bytes, Tag::ZIPR, |p| {
-        let at = zipr_word(p, index, i);
-        put(p, at, x)
+        let (bit, width) = zipr_bits(p, index, i);
+        assert!(
+            width == 32 || x >> width == 0,
+            "{x} does not fit {width} bits"
+        );
+        for k in 0..width as usize {
+            let (byte, b) = ((bit + k) / 8, (bit + k) % 8);
+            p[byte] = p[byte] & !(1 << b) | ((x >> k) as u8 & 1) << b;
+        }
     })
 }
 
@@ -80,19 +108,52 @@ fn v56_zipr_counts() {
     let at = section_at(&bytes, Tag::ZIPR);
     let field = |f: usize, x: u32| forge(&bytes, Tag::ZIPR, |p| put(p, f, x));
     breaks(&field(0, 24), 56, "ZIPR", at, "section MESH says 25");
-    breaks(&field(32, 8), 56, "ZIPR", at + 32, "unknown flag bits");
+    breaks(&field(32, 16), 56, "ZIPR", at + 32, "unknown flag bits");
     breaks(&field(36, 1), 56, "ZIPR", at + 32, "reserved bits");
     for m_r in [26, 0, 3] {
         breaks(&field(4, m_r), 56, "ZIPR", at + 4, "ring vertices");
     }
     breaks(&field(12, 0x4000_0000), 56, "ZIPR", at + 12, "32 bits");
-    for (f, x) in [(12, 5), (16, 8), (20, 8), (24, 1), (28, 3), (8, 2)] {
+    for (f, x) in [(12, 5), (16, 22), (20, 8), (24, 1), (28, 3), (8, 2)] {
         breaks(&field(f, x), 56, "ZIPR", at, "counts call for");
     }
     let bad = forge(&bytes, Tag::ZIPR, |p| p.push(0));
     breaks(&bad, 56, "ZIPR", at, "counts call for");
     let bad = forge(&bytes, Tag::ZIPR, |p| p.truncate(36));
     breaks(&bad, 56, "ZIPR", at, "header");
+    // PACKED_LISTS: the bits of a list's last word past its last field are 0. Six
+    // exceptions of 6 bits (a vertex of 25 and the WART flag) leave 28 bits of their second
+    // word.
+    assert_eq!(zipr_width(&bytes, EXCEPTIONS, 0), 6);
+    let last_word = zipr_at(&bytes, RECORDS, 0) - 4;
+    let bad = forge(&bytes, Tag::ZIPR, |p| {
+        let i = (last_word - at) as usize;
+        p[i + 3] |= 0x80;
+    });
+    breaks(
+        &bad,
+        56,
+        "ZIPR",
+        last_word,
+        "EXCEPTIONS: bits past its last field",
+    );
+}
+
+/// A file with `PACKED_LISTS` cleared is laid out with 32-bit lists: its length no longer
+/// fits its counts.
+#[test]
+fn packed_lists_cleared() {
+    let bytes = vector("torus_with_t0.zipper.lrm");
+    let flags = get(&payload(&bytes, Tag::ZIPR), 32);
+    assert_eq!(flags & 8, 8, "the vector sets PACKED_LISTS");
+    let bad = forge(&bytes, Tag::ZIPR, |p| put(p, 32, flags & !8));
+    breaks(
+        &bad,
+        56,
+        "ZIPR",
+        section_at(&bytes, Tag::ZIPR),
+        "counts call for",
+    );
 }
 
 /// [V57] `ZIPR` rings satisfy [V16], the bit vectors only with several rings.
@@ -144,20 +205,39 @@ fn v58_symbols_and_heads() {
         zipr_at(&bytes, PLANES, 0),
         "past the last ring vertex",
     );
-    // Exception words: bit 31, a tip out of range.
-    let x = zipr_get(&bytes, EXCEPTIONS, 0);
-    for bad_word in [x | 1 << 31, 25, 0x3FFF_FFFF] {
-        let bad = zipr_set(&bytes, EXCEPTIONS, 0, bad_word);
+    // Exception words: bit 31, a tip out of range (32-bit words, version 1.9); packed, a
+    // tip out of range (6-bit fields: the WART flag at bit 5).
+    let old = vector("torus_with_t0.zipper-1.9.lrm");
+    let x = zipr_get(&old, EXCEPTIONS, 0);
+    let packed = |bad_word| zipr_set(&bytes, EXCEPTIONS, 0, bad_word);
+    for bad in [
+        zipr_set(&old, EXCEPTIONS, 0, x | 1 << 31),
+        zipr_set(&old, EXCEPTIONS, 0, 25),
+        zipr_set(&old, EXCEPTIONS, 0, 0x3FFF_FFFF),
+        packed(25),
+        packed(31),
+        packed(1 << 5 | 30),
+    ] {
+        let at = if bad.len() == old.len() { &old } else { &bytes };
         breaks(
             &bad,
             58,
             "ZIPR",
-            zipr_at(&bytes, EXCEPTIONS, 0),
+            zipr_at(at, EXCEPTIONS, 0),
             "WART flag and a vertex",
         );
     }
-    // Record word 0 likewise; word 1: each state with a value it does not allow.
-    let bad = zipr_set(&bytes, RECORDS, 0, 1 << 31);
+    // Record word 0 likewise; word 1: each state with a value it does not allow (packed:
+    // the state in the top two bits of a 6-bit field, values below 4 n0 = 12).
+    let bad = zipr_set(&old, RECORDS, 0, 1 << 31);
+    breaks(
+        &bad,
+        58,
+        "ZIPR",
+        zipr_at(&old, RECORDS, 0),
+        "WART flag and a vertex",
+    );
+    let bad = zipr_set(&bytes, RECORDS, 0, 27);
     breaks(
         &bad,
         58,
@@ -166,7 +246,18 @@ fn v58_symbols_and_heads() {
         "WART flag and a vertex",
     );
     for state_word in [1, 1 << 30 | 16, 1 << 30 | 3, 3 << 30 | 1] {
-        let bad = zipr_set(&bytes, RECORDS, 1, state_word);
+        let bad = zipr_set(&old, RECORDS, 1, state_word);
+        breaks(
+            &bad,
+            58,
+            "ZIPR",
+            zipr_at(&old, RECORDS, 1),
+            "no valid opposite",
+        );
+    }
+    assert_eq!(zipr_width(&bytes, RECORDS, 1), 6);
+    for state_field in [1, 1 << 4 | 12, 1 << 4 | 3, 3 << 4 | 1] {
+        let bad = zipr_set(&bytes, RECORDS, 1, state_field);
         breaks(
             &bad,
             58,
@@ -219,7 +310,10 @@ fn v59_t0_rows() {
 fn v60_corners_and_lr_rules() {
     let defective = vector("defective_torus.zipper.lrm"); // 7 off-ring vertices
     let at = zipr_at(&defective, C, 0);
-    for x in [3, 8 * 16 + 4 * 5 + 1, 0xFFFF_FFFE] {
+    // Packed corners are stored plus one (0 for NONE): corner 3, a corner past the T0
+    // rows, the largest the field holds.
+    let width = zipr_width(&defective, C, 0);
+    for x in [4, 8 * 16 + 4 * 5 + 2, (1 << width) - 1] {
         breaks(
             &zipr_set(&defective, C, 0, x),
             60,
@@ -231,7 +325,7 @@ fn v60_corners_and_lr_rules() {
     let bytes = vector("genus3_torus.zipper.lrm"); // m = 19, explicit T0 opposites
     let at = zipr_at(&bytes, EXPLICIT, 0);
     breaks(
-        &zipr_set(&bytes, EXPLICIT, 0, 7),
+        &zipr_set(&bytes, EXPLICIT, 0, 8),
         60,
         "ZIPR",
         at,
@@ -240,9 +334,10 @@ fn v60_corners_and_lr_rules() {
     // An exception's tip moved to another vertex: the triangles no longer fit together,
     // which only the verifying reader sees.
     let x = zipr_get(&bytes, EXCEPTIONS, 0);
+    let wart = 1 << (zipr_width(&bytes, EXCEPTIONS, 0) - 1);
     let mut semantic = 0;
     for tip in 0..19u32 {
-        let bad = zipr_set(&bytes, EXCEPTIONS, 0, x & !0x3FFF_FFFF | tip);
+        let bad = zipr_set(&bytes, EXCEPTIONS, 0, x & wart | tip);
         if bad == bytes {
             continue;
         }

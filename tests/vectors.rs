@@ -134,7 +134,7 @@ fn listing(name: &str, bytes: &[u8]) -> String {
             name,
             z,
             format!(
-                "{n} triangles, {} ring vertices, {} T0 rows, {} exceptions, {} records, {} pairs, {} explicit T0 opposites, boundaries on the ring: {}, wart deltas: {}, short heads: {}",
+                "{n} triangles, {} ring vertices, {} T0 rows, {} exceptions, {} records, {} pairs, {} explicit T0 opposites, boundaries on the ring: {}, wart deltas: {}, short heads: {}, packed lists: {}",
                 z.ring_vertices(),
                 z.t0_count(),
                 z.exception_count(),
@@ -143,7 +143,8 @@ fn listing(name: &str, bytes: &[u8]) -> String {
                 z.explicit_count(),
                 z.boundaries_on_ring(),
                 z.wart_deltas(),
-                z.short_heads()
+                z.short_heads(),
+                z.packed_lists()
             ),
         ),
         View::Strips(strips) => corner_listing(
@@ -459,15 +460,25 @@ fn vectors_match() {
     }
 }
 
-/// Zipper files of versions 1.7 (no `WART_DELTAS`: every wart an exception word) and 1.8
-/// (four-word heads, before `SHORT_HEADS`), kept from before each flag: they still open,
-/// verify, and give every corner's vertex and opposite as the current vector of the same mesh
-/// does (the listing after its header lines).
+/// Zipper files of versions 1.7 (no `WART_DELTAS`: every wart an exception word), 1.8
+/// (four-word heads, before `SHORT_HEADS`) and 1.9 (32-bit lists, before `PACKED_LISTS`),
+/// kept from before each flag: they still open, verify, and give every corner's vertex and
+/// opposite as the current vector of the same mesh does (the listing after its header lines).
 #[test]
-fn zipper_files_of_versions_1_7_and_1_8_read_the_same() {
+fn zipper_files_of_versions_1_7_to_1_9_read_the_same() {
     let versions = [
-        (7, "wart deltas: false, short heads: false"),
-        (8, "wart deltas: true, short heads: false"),
+        (
+            7,
+            "wart deltas: false, short heads: false, packed lists: false",
+        ),
+        (
+            8,
+            "wart deltas: true, short heads: false, packed lists: false",
+        ),
+        (
+            9,
+            "wart deltas: true, short heads: true, packed lists: false",
+        ),
     ];
     for name in ["torus_with_t0", "genus3_torus"] {
         let current = std::fs::read(dir().join(format!("{name}.zipper.lrm"))).unwrap();
@@ -476,7 +487,7 @@ fn zipper_files_of_versions_1_7_and_1_8_read_the_same() {
             .lines()
             .nth(1)
             .unwrap()
-            .ends_with("wart deltas: true, short heads: true"));
+            .ends_with("wart deltas: true, short heads: true, packed lists: true"));
         for (minor, flags) in versions {
             let file = format!("{name}.zipper-1.{minor}.lrm");
             let old = std::fs::read(dir().join(&file)).unwrap();

@@ -384,7 +384,8 @@ impl LrbeHeader {
     }
 }
 
-/// `ZIPR` (§3.5e): ten u32, then thirteen u32 arrays (`SUPER` empty before version 1.9).
+/// `ZIPR` (§3.5e): ten u32, then thirteen u32 arrays (`SUPER` empty before version 1.9; the
+/// seven lists bit fields in words with `PACKED_LISTS`, version 1.10).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct ZiprHeader {
     /// `m`: vertices.
@@ -403,7 +404,8 @@ pub struct ZiprHeader {
     pub pairs: u32,
     /// `E`: explicit T0 opposites.
     pub explicit: u32,
-    /// Flags: [`LR_BOUNDARIES_ON_RING`], [`ZIPPER_WART_DELTAS`], [`ZIPPER_SHORT_HEADS`].
+    /// Flags: [`LR_BOUNDARIES_ON_RING`], [`ZIPPER_WART_DELTAS`], [`ZIPPER_SHORT_HEADS`],
+    /// [`ZIPPER_PACKED_LISTS`].
     pub flags: u32,
     /// Reserved, 0.
     pub reserved: u32,
@@ -419,6 +421,10 @@ pub const ZIPPER_WART_DELTAS: u32 = 2;
 /// as 16-bit offsets from the block's first vertex, the counts as 16-bit offsets from its
 /// superblock's in `SUPER`) instead of four: half a bit per triangle less on a scan.
 pub const ZIPPER_SHORT_HEADS: u32 = 4;
+
+/// `ZIPR` flag (FORMAT.md §3.5e, version 1.10): the seven lists (`EXCEPTIONS` to `C`) are bit
+/// fields as wide as the counts call for (a vertex of a mesh of 5,000 in 13 bits, not 32).
+pub const ZIPPER_PACKED_LISTS: u32 = 8;
 
 impl ZiprHeader {
     /// Bytes of the header.
@@ -484,10 +490,38 @@ impl ZiprHeader {
         self.rings > 1
     }
 
+    /// Elements of the seven lists (`EXCEPTIONS` to `C`, FORMAT.md §3.5e); `None` when
+    /// `m_r > m`.
+    pub fn list_lengths(&self) -> Option<[u64; 7]> {
+        use crate::lr::zipper::RECORD_WORDS;
+        Some([
+            self.exceptions as u64,
+            RECORD_WORDS as u64 * self.records as u64,
+            2 * self.pairs as u64,
+            3 * self.t0 as u64,
+            self.t0 as u64,
+            self.explicit as u64,
+            (self.m as u64).checked_sub(self.m_r as u64)?,
+        ])
+    }
+
+    /// The fields of the seven lists: 32-bit words, or with [`ZIPPER_PACKED_LISTS`] bit
+    /// fields as wide as the counts call for.
+    pub fn list_fields(&self) -> [[crate::lr::zipper::Field; 2]; 7] {
+        crate::lr::zipper::list_fields(
+            self.flags & ZIPPER_PACKED_LISTS != 0,
+            self.m,
+            self.m_r,
+            self.t0,
+            self.pairs,
+            self.explicit,
+        )
+    }
+
     /// The arrays the counts call for; `None` when `m_r > m` or the sizes overflow.
     pub fn layout(&self) -> Option<Layout> {
         use crate::lr::zipper::{
-            plane_array_words, HEAD_WORDS, RECORD_WORDS, SHORT_HEAD_WORDS, SUPER_SHIFT,
+            packed_words, plane_array_words, HEAD_WORDS, SHORT_HEAD_WORDS, SUPER_SHIFT,
         };
         let short = self.flags & ZIPPER_SHORT_HEADS != 0;
         let bits = if self.has_ring_bits() {
@@ -496,19 +530,22 @@ impl ZiprHeader {
             0
         };
         let blocks = (self.m_r as u64).div_ceil(1 << crate::lr::zipper::BLOCK_SHIFT);
+        let lists = self.list_lengths()?;
+        let fields = self.list_fields();
+        let list_words: [u64; 7] = std::array::from_fn(|i| packed_words(lists[i], fields[i]));
         let counts = [
             self.rings as u64 + 1,
             bits,
             bits,
             plane_array_words(self.m_r) as u64,
             if short { SHORT_HEAD_WORDS } else { HEAD_WORDS } as u64 * blocks,
-            self.exceptions as u64,
-            RECORD_WORDS as u64 * self.records as u64,
-            2 * self.pairs as u64,
-            3 * self.t0 as u64,
-            self.t0 as u64,
-            self.explicit as u64,
-            (self.m as u64).checked_sub(self.m_r as u64)?,
+            list_words[0],
+            list_words[1],
+            list_words[2],
+            list_words[3],
+            list_words[4],
+            list_words[5],
+            list_words[6],
             match short {
                 true => 2 * blocks.div_ceil(1 << SUPER_SHIFT).saturating_sub(1),
                 false => 0,

@@ -11,14 +11,14 @@ use super::Sections;
 use crate::corner_table::NONE;
 use crate::error::{Result, Rule};
 use crate::format::layout::{
-    ZiprHeader, LR_BOUNDARIES_ON_RING, ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
+    ZiprHeader, LR_BOUNDARIES_ON_RING, ZIPPER_PACKED_LISTS, ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
 };
 use crate::format::Tag;
 use crate::ids::Corner;
 use crate::lr::zipper::{
-    plane_array_words, BLOCK_SHIFT, DELTAS, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT, HEAD_WORDS,
-    IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PLANE_WORDS, PREVIOUS, RECORD_WORDS, SHORT_HEAD_WORDS,
-    STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
+    first_bit, plane_array_words, Packed, BLOCK_SHIFT, DELTAS, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT,
+    HEAD_WORDS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PLANE_WORDS, PREVIOUS, RECORD_WORDS,
+    SHORT_HEAD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
 };
 use crate::lr::{LrLayout, ZipperTables, NULL, VALUE, WART};
 use crate::words::{LeWords, Words};
@@ -31,6 +31,7 @@ const RECORDS: usize = 6;
 const PAIRS: usize = 7;
 const T0_V: usize = 8;
 const T0_CODES: usize = 9;
+const EXPLICIT_OPPOSITES: usize = 10;
 const C: usize = 11;
 
 /// The `ZIPR` section as tables and the number of canonical triangles they hold, after
@@ -48,7 +49,8 @@ pub(super) fn zipper_tables<'a>(
     let h = ZiprHeader::read(b);
     let (m_r, rings, n0) = (h.m_r, h.rings, h.t0);
     f.expect_vertices(0, h.m, m, Rule(56))?;
-    let known = LR_BOUNDARIES_ON_RING | ZIPPER_WART_DELTAS | ZIPPER_SHORT_HEADS;
+    let known =
+        LR_BOUNDARIES_ON_RING | ZIPPER_WART_DELTAS | ZIPPER_SHORT_HEADS | ZIPPER_PACKED_LISTS;
     if h.flags & !known != 0 || h.reserved != 0 {
         return Err(f.err(32, Rule(56), "unknown flag bits or reserved bits are set"));
     }
@@ -77,9 +79,39 @@ pub(super) fn zipper_tables<'a>(
     let starts = arrays.map(|a| a.start);
     let [ring_starts, ring_last, ring_rank, planes, heads, exceptions, records, pairs, t0_v, t0_codes, t0_explicit, c, super_counts] =
         words;
-    let word_err = |array: usize, i: usize, rule: Rule, message: String| {
-        f.err(starts[array] + 4 * i, rule, message)
+    // The seven lists, words or bit fields (PACKED_LISTS), read as words.
+    let lengths = h.list_lengths().expect("m_r <= m: checked above");
+    let fields = h.list_fields();
+    let list = |i: usize, words: LeWords<'a>| Packed::new(words, lengths[i] as usize, fields[i]);
+    let lists = [
+        list(0, exceptions),
+        list(1, records),
+        list(2, pairs),
+        list(3, t0_v),
+        list(4, t0_codes),
+        list(5, t0_explicit),
+        list(6, c),
+    ];
+    // Where element `i` of an array starts (an error names its byte).
+    let offset_of = |array: usize, i: usize| match array {
+        EXCEPTIONS..=C => starts[array] + (first_bit(fields[array - EXCEPTIONS], i) / 8) as usize,
+        _ => starts[array] + 4 * i,
     };
+    let word_err = |array: usize, i: usize, rule: Rule, message: String| {
+        f.err(offset_of(array, i), rule, message)
+    };
+    if let Some(k) = lists.iter().position(|l| !l.padding_is_zero()) {
+        let array = EXCEPTIONS + k;
+        return Err(f.err(
+            arrays[array].end() - 4,
+            Rule(56),
+            format!(
+                "{}: bits past its last field are set",
+                ZiprHeader::ARRAYS[array]
+            ),
+        ));
+    }
+    let [exceptions, records, pairs, t0_v, t0_codes, t0_explicit, c] = lists;
 
     // [V57] rings, as for the standard LR; the bit vectors only with several rings.
     check_rings(
@@ -108,6 +140,7 @@ pub(super) fn zipper_tables<'a>(
         boundaries_on_ring: false,
         wart_deltas: h.flags & ZIPPER_WART_DELTAS != 0,
         short_heads: h.flags & ZIPPER_SHORT_HEADS != 0,
+        packed_lists: h.flags & ZIPPER_PACKED_LISTS != 0,
     };
     debug_assert_eq!(tables.planes.count(), plane_array_words(m_r));
 
@@ -163,7 +196,7 @@ pub(super) fn zipper_tables<'a>(
     }
     if explicit != n_explicit {
         return Err(word_err(
-            10,
+            EXPLICIT_OPPOSITES,
             explicit,
             Rule(59),
             format!(
@@ -180,7 +213,7 @@ pub(super) fn zipper_tables<'a>(
     let corner_arrays = [
         (C, &tables.c),
         (PAIRS, &tables.pairs),
-        (10, &tables.t0_explicit),
+        (EXPLICIT_OPPOSITES, &tables.t0_explicit),
     ];
     for (array, words) in corner_arrays {
         if let Some(i) = (0..words.count()).find(|&i| !corner_ok(words.at(i))) {
@@ -208,7 +241,7 @@ pub(super) fn zipper_tables<'a>(
     }
     let corner_at = |c: Corner| {
         if c.0 >= 8 * m_r {
-            starts[T0_V] + 12 * ((c.0 - 8 * m_r) / 4) as usize
+            offset_of(T0_V, 3 * ((c.0 - 8 * m_r) / 4) as usize)
         } else {
             starts[PLANES] + 4 * PLANE_WORDS * (c.0 >> (3 + BLOCK_SHIFT)) as usize
         }
@@ -217,7 +250,7 @@ pub(super) fn zipper_tables<'a>(
         if v < m_r {
             starts[PLANES] + 4 * PLANE_WORDS * (v >> BLOCK_SHIFT) as usize
         } else {
-            starts[C] + 4 * (v - m_r) as usize
+            offset_of(C, (v - m_r) as usize)
         }
     };
     slots.check_jumps(&tables, &f, corner_at)?;

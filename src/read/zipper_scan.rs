@@ -62,14 +62,14 @@ pub(super) fn tip_word_holds(word: u32, m: u32) -> bool {
 /// a vertex, record word 1 what FORMAT.md §3.5e allows, the pairs used once each in order.
 fn words_hold(t: &Tables, m: u32) -> bool {
     let n0 = t.t0_count() as u64;
-    let exceptions = t.exceptions.0.chunks_exact(4);
-    let exceptions_hold = exceptions.fold(true, |ok, w| {
-        ok & tip_word_holds(u32::from_le_bytes(w.try_into().expect("four bytes")), m)
-    });
+    let exceptions_hold =
+        (0..t.exceptions.count()).fold(true, |ok, i| ok & tip_word_holds(t.exceptions.at(i), m));
     let mut pairs = 0usize;
-    let records_hold = t.records.0.chunks_exact(4 * RECORD_WORDS).all(|record| {
-        let word = |i: usize| u32::from_le_bytes(record[4 * i..4 * i + 4].try_into().expect("4"));
-        let (first, second) = (word(0), word(1));
+    let records_hold = (0..t.record_count()).all(|r| {
+        let (first, second) = (
+            t.records.at(RECORD_WORDS * r),
+            t.records.at(RECORD_WORDS * r + 1),
+        );
         let value = second & ((1 << STATE_SHIFT) - 1);
         let second_holds = match second >> STATE_SHIFT {
             STORES_NONE => value == 0,

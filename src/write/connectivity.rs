@@ -6,7 +6,7 @@ use crate::edgebreaker;
 use crate::error::Result;
 use crate::format::layout::{
     write_fields, Layout, LrbeHeader, LrtbHeader, StrpHeader, ZiprHeader, LR_BOUNDARIES_ON_RING,
-    ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
+    ZIPPER_PACKED_LISTS, ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
 };
 use crate::format::{Kind, Tag};
 use crate::ids::{Triangle, Vertex};
@@ -216,13 +216,13 @@ pub(super) fn zipper_section(z: &Zipper, shape: bool) -> Encoded {
             &t.ring_rank,
             &t.planes,
             &t.heads,
-            &t.exceptions,
-            &t.records,
-            &t.pairs,
-            &t.t0_v,
-            &t.t0_codes,
-            &t.t0_explicit,
-            &t.c,
+            &t.exceptions.words,
+            &t.records.words,
+            &t.pairs.words,
+            &t.t0_v.words,
+            &t.t0_codes.words,
+            &t.t0_explicit.words,
+            &t.c.words,
             &t.super_counts,
         ],
         &[],
@@ -254,7 +254,12 @@ pub(crate) fn zipper_header(z: &Zipper) -> ZiprHeader {
         explicit: t.explicit_count() as u32,
         flags: boundary_flag(t)
             | if t.wart_deltas { ZIPPER_WART_DELTAS } else { 0 }
-            | if t.short_heads { ZIPPER_SHORT_HEADS } else { 0 },
+            | if t.short_heads { ZIPPER_SHORT_HEADS } else { 0 }
+            | if t.packed_lists {
+                ZIPPER_PACKED_LISTS
+            } else {
+                0
+            },
         reserved: 0,
     }
 }

@@ -2,6 +2,7 @@
 //! way the decoder reads it back, then every slot and T0 opposite is decoded and compared
 //! with the standard LR's.
 
+use super::packed::{list_fields, Packed};
 use super::tables::{plane_array_words, ZipperTables};
 use super::{
     BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, DELTAS, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT,
@@ -204,6 +205,28 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
         0 | 1 => Vec::new(),
         _ => bits.clone(),
     };
+    // Every list in as many bits as the counts call for (PACKED_LISTS).
+    let fields = list_fields(
+        true,
+        t.m,
+        m_r,
+        n0,
+        (pairs.len() / 2) as u32,
+        t0_explicit.len() as u32,
+    );
+    let lists = [
+        &exceptions,
+        &records,
+        &pairs,
+        &t.vo_v,
+        &t0_codes,
+        &t0_explicit,
+        &t.c,
+    ];
+    let mut packed = lists.into_iter().zip(fields).map(|(words, fields)| {
+        Packed::pack(words, fields).expect("every word is in the range its field was sized for")
+    });
+    let mut list = || packed.next().expect("seven lists");
     let z = ZipperTables {
         ring_starts: t.ring_starts.clone(),
         ring_last: ring_bits(&t.ring_last),
@@ -211,18 +234,19 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
         planes,
         heads,
         super_counts,
-        exceptions,
-        records,
-        pairs,
-        t0_v: t.vo_v.clone(),
-        t0_codes,
-        t0_explicit,
-        c: t.c.clone(),
+        exceptions: list(),
+        records: list(),
+        pairs: list(),
+        t0_v: list(),
+        t0_codes: list(),
+        t0_explicit: list(),
+        c: list(),
         m_r,
         m: t.m,
         boundaries_on_ring: t.boundaries_on_ring,
         wart_deltas,
         short_heads: true,
+        packed_lists: true,
     };
     same_as_standard(&z, t)?;
     Ok(z)

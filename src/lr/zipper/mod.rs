@@ -36,8 +36,10 @@
 //! operator is [`LrLayout`](super::LrLayout)'s and answers as the standard LR does.
 
 mod encode;
+mod packed;
 mod tables;
 
+pub use packed::{first_bit, list_fields, packed_words, Field, FieldKind, Packed};
 pub(crate) use tables::Slot;
 pub use tables::{plane_array_words, ZipperTables};
 

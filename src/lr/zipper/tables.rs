@@ -1,6 +1,7 @@
 //! The decoding side of the Zipper: the tables [`ZipperTables`] as they lie on disk and the
 //! [`LrLayout`] implementation through which the corner operators read them.
 
+use super::packed::Packed;
 use super::{
     BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, DELTAS, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT,
     HEAD_WORDS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PLANE_WORDS, PREVIOUS,
@@ -28,20 +29,20 @@ pub struct ZipperTables<W> {
     /// with `short_heads`).
     pub(crate) heads: W,
     /// Exception words: WART flag and tip.
-    pub(crate) exceptions: W,
+    pub(crate) exceptions: Packed<W>,
     /// Records of irregular slots: WART flag and tip, then the stored opposite.
-    pub(crate) records: W,
+    pub(crate) records: Packed<W>,
     /// Opposite pairs of records that store both, two words each.
-    pub(crate) pairs: W,
+    pub(crate) pairs: Packed<W>,
     /// T0 rows' vertices, three each.
-    pub(crate) t0_v: W,
+    pub(crate) t0_v: Packed<W>,
     /// T0 rows' code words: three 2-bit opposite codes and the index of the first explicit
     /// opposite.
-    pub(crate) t0_codes: W,
+    pub(crate) t0_codes: Packed<W>,
     /// Explicit T0 opposites, row by row.
-    pub(crate) t0_explicit: W,
+    pub(crate) t0_explicit: Packed<W>,
     /// A corner of each isolated vertex (`NONE` for a vertex without triangles).
-    pub(crate) c: W,
+    pub(crate) c: Packed<W>,
     /// With `short_heads`, per superblock from the second: the exceptions and the records
     /// before it.
     pub(crate) super_counts: W,
@@ -54,6 +55,8 @@ pub struct ZipperTables<W> {
     pub(crate) wart_deltas: bool,
     /// The header's `SHORT_HEADS` flag: two-word heads and superblock counts.
     pub(crate) short_heads: bool,
+    /// The header's `PACKED_LISTS` flag: the lists above as bit fields (read as words).
+    pub(crate) packed_lists: bool,
 }
 
 /// The symbol planes of one block and where a slot lies in them.
@@ -267,6 +270,11 @@ impl<W: Words> ZipperTables<W> {
         self.short_heads
     }
 
+    /// Whether the header's `PACKED_LISTS` flag is set (version 1.10).
+    pub fn packed_lists(&self) -> bool {
+        self.packed_lists
+    }
+
     /// Whether the header's `WART_DELTAS` flag is set (version 1.8).
     pub fn wart_deltas(&self) -> bool {
         self.wart_deltas
@@ -296,9 +304,9 @@ impl<W: Words> ZipperTables<W> {
     pub(crate) fn part_words(&self) -> [usize; 4] {
         [
             self.planes.count() + self.heads.count() + self.super_counts.count(),
-            self.exceptions.count(),
-            self.records.count() + self.pairs.count(),
-            self.t0_v.count() + self.t0_codes.count() + self.t0_explicit.count(),
+            self.exceptions.words.count(),
+            self.records.words.count() + self.pairs.words.count(),
+            self.t0_v.words.count() + self.t0_codes.words.count() + self.t0_explicit.words.count(),
         ]
     }
 
@@ -311,7 +319,7 @@ impl<W: Words> ZipperTables<W> {
             + self.ring_last.count()
             + self.ring_rank.count()
             + self.part_words().iter().sum::<usize>()
-            + self.c.count();
+            + self.c.words.count();
         4 * words as u64
     }
 }

@@ -1,0 +1,298 @@
+//! The Zipper's lists as bit fields (`ZIPR` flag `PACKED_LISTS`, version 1.10): each element
+//! of the exception, record, pair, T0 and `C` lists in as many bits as the mesh's counts
+//! call for, instead of a 32-bit word. On a mesh of a few thousand vertices a vertex takes
+//! 12 bits, not 32: the lists are most of the Zipper on meshes with borders and T0
+//! triangles (FORMAT.md §3.5e).
+//!
+//! [`Packed`] reads a field and returns the word the unpacked layout stores, so that every
+//! operator and every rule reads the same words either way.
+
+use crate::words::Words;
+
+/// How a field maps to the word of the unpacked layout (FORMAT.md §3.5e).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FieldKind {
+    /// The word itself.
+    Plain,
+    /// A vertex with the WART flag in the field's top bit (the word's bit 30).
+    Flagged,
+    /// A corner plus one, 0 for `NONE` (`0xFFFFFFFF`).
+    Corner,
+    /// A record's second word: its state in the field's top two bits (the word's bits
+    /// 30–31), its value below.
+    Stated,
+}
+
+/// One field: its width in bits (0 to 32) and kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Field {
+    /// Bits per field.
+    pub width: u8,
+    /// How it maps to a word.
+    pub kind: FieldKind,
+}
+
+impl Field {
+    /// A 32-bit word of the unpacked layout.
+    pub const WORD: Field = Field {
+        width: 32,
+        kind: FieldKind::Plain,
+    };
+
+    /// The word a field's bits stand for.
+    #[inline(always)]
+    fn decode(self, f: u32) -> u32 {
+        match self.kind {
+            FieldKind::Plain => f,
+            FieldKind::Flagged => {
+                let top = self.width as u32 - 1;
+                (f & low_bits(top)) | (f >> top & 1) << 30
+            }
+            FieldKind::Corner => f.wrapping_sub(1),
+            FieldKind::Stated => {
+                let top = self.width as u32 - 2;
+                (f & low_bits(top)) | (f >> top) << 30
+            }
+        }
+    }
+
+    /// The field for a word, `None` when the word does not fit.
+    fn encode(self, word: u32) -> Option<u32> {
+        let f = match self.kind {
+            FieldKind::Plain => word,
+            FieldKind::Flagged => {
+                let top = self.width as u32 - 1;
+                if word & low_bits(30) > low_bits(top) || word >> 31 != 0 {
+                    return None;
+                }
+                (word & low_bits(30)) | (word >> 30 & 1) << top
+            }
+            FieldKind::Corner => word.wrapping_add(1),
+            FieldKind::Stated => {
+                let top = self.width as u32 - 2;
+                if word & low_bits(30) > low_bits(top) {
+                    return None;
+                }
+                (word & low_bits(30)) | (word >> 30) << top
+            }
+        };
+        (f <= low_bits(self.width as u32)).then_some(f)
+    }
+}
+
+/// Bits `0..n` set (`n` up to 32).
+#[inline(always)]
+fn low_bits(n: u32) -> u32 {
+    ((1u64 << n) - 1) as u32
+}
+
+/// Bits needed to write `x`.
+fn bits(x: u64) -> u32 {
+    64 - x.leading_zeros()
+}
+
+/// The fields of the seven lists, in file order: `EXCEPTIONS`, `RECORDS` (word 0, word 1),
+/// `PAIRS`, `T0_V`, `T0_CODES`, `EXPLICIT`, `C`; each pair gives the fields of even and odd
+/// elements. Words of 32 bits without `PACKED_LISTS`; with it, from the header's counts
+/// (FORMAT.md §3.5e): `m` vertices, `m_r` ring vertices, `n0` T0 rows, `pairs` opposite
+/// pairs, `explicit` explicit T0 opposites.
+pub fn list_fields(
+    packed: bool,
+    m: u32,
+    m_r: u32,
+    n0: u32,
+    pairs: u32,
+    explicit: u32,
+) -> [[Field; 2]; 7] {
+    if !packed {
+        return [[Field::WORD; 2]; 7];
+    }
+    let field = |width: u32, kind| Field {
+        width: width as u8,
+        kind,
+    };
+    let vertex = bits((m as u64).saturating_sub(1)).min(30);
+    let flagged = field(vertex + 1, FieldKind::Flagged);
+    let corner = field(
+        bits(8 * m_r as u64 + 4 * n0 as u64).min(32),
+        FieldKind::Corner,
+    );
+    let values = (4 * n0 as u64).max(pairs as u64).saturating_sub(1);
+    let stated = field(2 + bits(values).min(30), FieldKind::Stated);
+    let codes = field(6 + bits(explicit as u64).min(26), FieldKind::Plain);
+    let vertex = field(vertex, FieldKind::Plain);
+    [
+        [flagged; 2],
+        [flagged, stated],
+        [corner; 2],
+        [vertex; 2],
+        [codes; 2],
+        [corner; 2],
+        [corner; 2],
+    ]
+}
+
+/// Words that `count` elements of `fields` take (even elements of `fields[0]`, odd of
+/// `fields[1]`).
+pub fn packed_words(count: u64, fields: [Field; 2]) -> u64 {
+    let [a, b] = fields.map(|f| f.width as u64);
+    (count / 2 * (a + b) + count % 2 * a).div_ceil(32)
+}
+
+/// The first bit of element `i` of a list of `fields` (even elements of `fields[0]`, odd of
+/// `fields[1]`).
+#[inline(always)]
+pub fn first_bit(fields: [Field; 2], i: usize) -> u64 {
+    let [a, b] = fields.map(|f| f.width as u64);
+    (i / 2) as u64 * (a + b) + (i % 2) as u64 * a
+}
+
+/// A list of fields over words `W`, read as the words of the unpacked layout.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Packed<W> {
+    /// The stored words.
+    pub(crate) words: W,
+    /// Elements.
+    len: u32,
+    /// Fields of even and odd elements.
+    fields: [Field; 2],
+}
+
+impl<W: Words> Packed<W> {
+    /// `len` elements of `fields` in `words`, which must hold [`packed_words`] of them.
+    pub fn new(words: W, len: usize, fields: [Field; 2]) -> Packed<W> {
+        debug_assert_eq!(words.count() as u64, packed_words(len as u64, fields));
+        let len = u32::try_from(len).expect("lists of at most 2^32 - 1 elements");
+        Packed { words, len, fields }
+    }
+
+    /// The first bit of element `i`.
+    #[inline(always)]
+    pub fn bit(&self, i: usize) -> u64 {
+        first_bit(self.fields, i)
+    }
+
+    /// Whether the bits of the last word past the last element are 0.
+    pub fn padding_is_zero(&self) -> bool {
+        let used = (self.bit(self.len as usize) % 32) as u32;
+        used == 0 || self.words.at(self.words.count() - 1) >> used == 0
+    }
+
+    /// The same list over other words (the same fields).
+    pub fn map_words<'s, V: Words>(&'s self, f: impl FnOnce(&'s W) -> V) -> Packed<V> {
+        Packed {
+            words: f(&self.words),
+            len: self.len,
+            fields: self.fields,
+        }
+    }
+}
+
+impl Packed<Vec<u32>> {
+    /// Packs the words of the unpacked layout; `None` when one does not fit its field.
+    pub fn pack(words: &[u32], fields: [Field; 2]) -> Option<Packed<Vec<u32>>> {
+        let count = packed_words(words.len() as u64, fields) as usize;
+        let mut out = vec![0u32; count];
+        let mut bit = 0u64;
+        for (i, &word) in words.iter().enumerate() {
+            let field = fields[i % 2];
+            let f = field.encode(word)? as u64;
+            let (k, s) = ((bit / 32) as usize, bit % 32);
+            if field.width > 0 {
+                let wide = f << s;
+                out[k] |= wide as u32;
+                if s + field.width as u64 > 32 {
+                    out[k + 1] |= (wide >> 32) as u32;
+                }
+            }
+            bit += field.width as u64;
+        }
+        Some(Packed {
+            words: out,
+            len: u32::try_from(words.len()).ok()?,
+            fields,
+        })
+    }
+}
+
+impl<W: Words> Words for Packed<W> {
+    /// The word of the unpacked layout that element `i` stands for.
+    #[inline(always)]
+    fn at(&self, i: usize) -> u32 {
+        assert!(
+            i < self.len as usize,
+            "element {i} of a list of {}",
+            self.len
+        );
+        let field = self.fields[i % 2];
+        if field.width == 0 {
+            return field.decode(0);
+        }
+        let bit = self.bit(i);
+        let (k, s) = ((bit / 32) as usize, (bit % 32) as u32);
+        let mut f = self.words.at(k) as u64 >> s;
+        if s + field.width as u32 > 32 {
+            f |= (self.words.at(k + 1) as u64) << (32 - s);
+        }
+        field.decode(f as u32 & low_bits(field.width as u32))
+    }
+
+    fn count(&self) -> usize {
+        self.len as usize
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn packed_lists_give_back_their_words() {
+        let lists = list_fields(true, 5000, 4800, 300, 7, 20);
+        let samples: [Vec<u32>; 7] = [
+            vec![0, 4999, 4999 | 1 << 30, 17],
+            vec![4999 | 1 << 30, 3 << 30 | 6, 12, 1 << 30 | 1199, 0, 0],
+            vec![0xFFFF_FFFF, 8 * 4800 + 4 * 300 - 1, 0, 5],
+            vec![0, 1, 4999],
+            vec![0b11_0000 | 20 << 6, 1],
+            vec![0xFFFF_FFFF, 3],
+            vec![],
+        ];
+        for (fields, words) in lists.into_iter().zip(samples) {
+            let packed = Packed::pack(&words, fields).unwrap();
+            let back: Vec<u32> = (0..words.len()).map(|i| packed.at(i)).collect();
+            assert_eq!(back, words, "{fields:?}");
+            assert!(packed.padding_is_zero());
+        }
+    }
+
+    #[test]
+    fn widths_follow_the_counts() {
+        let [exceptions, records, pairs, t0_v, codes, explicit, c] =
+            list_fields(true, 5000, 4800, 300, 7, 20);
+        assert_eq!(exceptions[0].width, 14);
+        assert_eq!(records.map(|f| f.width), [14, 2 + 11]);
+        assert_eq!(pairs[0].width, 16);
+        assert_eq!(t0_v[0].width, 13);
+        assert_eq!(codes[0].width, 6 + 5);
+        assert_eq!([explicit[0].width, c[0].width], [16, 16]);
+        assert_eq!(list_fields(false, 5, 4, 0, 0, 0), [[Field::WORD; 2]; 7]);
+    }
+
+    #[test]
+    fn words_that_do_not_fit_are_refused() {
+        let [exceptions, records, ..] = list_fields(true, 16, 16, 1, 0, 0);
+        assert!(Packed::pack(&[16], exceptions).is_none());
+        assert!(Packed::pack(&[1 << 31], exceptions).is_none());
+        assert!(Packed::pack(&[0, 1 << 30 | 4], records).is_none());
+        assert!(Packed::pack(&[0, 1 << 30 | 3], records).is_some());
+    }
+
+    #[test]
+    fn nonzero_padding_is_seen() {
+        let [exceptions, ..] = list_fields(true, 16, 16, 1, 0, 0);
+        let mut packed = Packed::pack(&[3, 5], exceptions).unwrap();
+        packed.words[0] |= 1 << 20;
+        assert!(!packed.padding_is_zero());
+    }
+}
