@@ -160,9 +160,10 @@ pub(super) fn zipper_tables<'a>(
     // [V59] T0 rows.
     let n_explicit = tables.t0_explicit.count();
     let mut explicit = 0usize;
+    let (mut t0_vertices, mut t0_codes) = (tables.t0_v.iter(), tables.t0_codes.iter());
     for j in 0..n0 as usize {
         for i in 0..3 {
-            let x = tables.t0_v.at(3 * j + i);
+            let x = t0_vertices.next().expect("3 n0 T0 vertices");
             if x >= m {
                 return Err(word_err(
                     T0_V,
@@ -172,7 +173,7 @@ pub(super) fn zipper_tables<'a>(
                 ));
             }
         }
-        let word = tables.t0_codes.at(j);
+        let word = t0_codes.next().expect("n0 T0 code words");
         if (word >> EXPLICIT_SHIFT) as usize != explicit {
             return Err(word_err(
                 T0_CODES,
@@ -194,6 +195,7 @@ pub(super) fn zipper_tables<'a>(
             ));
         }
     }
+    drop((t0_vertices, t0_codes));
     if explicit != n_explicit {
         return Err(word_err(
             EXPLICIT_OPPOSITES,
@@ -216,17 +218,17 @@ pub(super) fn zipper_tables<'a>(
         (EXPLICIT_OPPOSITES, &tables.t0_explicit),
     ];
     for (array, words) in corner_arrays {
-        if let Some(i) = (0..words.count()).find(|&i| !corner_ok(words.at(i))) {
+        if let Some((i, x)) = words.iter().enumerate().find(|&(_, x)| !corner_ok(x)) {
             return Err(word_err(
                 array,
                 i,
                 Rule(60),
-                format!("{} is not a corner of the mesh", words.at(i)),
+                format!("{x} is not a corner of the mesh"),
             ));
         }
     }
-    for r in 0..tables.record_count() {
-        let word = tables.records.at(RECORD_WORDS * r + 1);
+    let stored = tables.records.iter().skip(1).step_by(RECORD_WORDS);
+    for (r, word) in stored.enumerate() {
         let state = word >> STATE_SHIFT;
         if (state == STORES_FIRST || state == STORES_SECOND)
             && !corner_ok((8 * m_r).wrapping_add(word & ((1 << STATE_SHIFT) - 1)))

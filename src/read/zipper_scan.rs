@@ -62,14 +62,14 @@ pub(super) fn tip_word_holds(word: u32, m: u32) -> bool {
 /// a vertex, record word 1 what FORMAT.md §3.5e allows, the pairs used once each in order.
 fn words_hold(t: &Tables, m: u32) -> bool {
     let n0 = t.t0_count() as u64;
-    let exceptions_hold =
-        (0..t.exceptions.count()).fold(true, |ok, i| ok & tip_word_holds(t.exceptions.at(i), m));
+    let exceptions_hold = t
+        .exceptions
+        .iter()
+        .fold(true, |ok, word| ok & tip_word_holds(word, m));
     let mut pairs = 0usize;
-    let records_hold = (0..t.record_count()).all(|r| {
-        let (first, second) = (
-            t.records.at(RECORD_WORDS * r),
-            t.records.at(RECORD_WORDS * r + 1),
-        );
+    let mut records = t.records.iter();
+    let records_hold = (0..t.record_count()).all(|_| {
+        let (first, second) = (records.next().unwrap_or(0), records.next().unwrap_or(0));
         let value = second & ((1 << STATE_SHIFT) - 1);
         let second_holds = match second >> STATE_SHIFT {
             STORES_NONE => value == 0,
@@ -156,21 +156,13 @@ pub(super) fn scan_slots(t: &Tables) -> Option<Vec<u8>> {
         return None;
     }
     let (exception_count, record_count) = (t.exceptions.count(), t.record_count());
+    // The exception words and the records' first words decoded once, in order (the lists
+    // may be bit fields: a field read in the slot loop kept its step from being inlined).
+    let exception_words: Vec<u32> = t.exceptions.iter().collect();
+    let record_words: Vec<u32> = t.records.iter().step_by(RECORD_WORDS).collect();
     // Word 0 in place of a word past the end: the counts below fail the scan then.
-    let exception = |i: usize| {
-        if i < exception_count {
-            t.exceptions.at(i)
-        } else {
-            0
-        }
-    };
-    let record = |i: usize| {
-        if i < record_count {
-            t.records.at(RECORD_WORDS * i)
-        } else {
-            0
-        }
-    };
+    let exception = |i: usize| exception_words.get(i).copied().unwrap_or(0);
+    let record = |i: usize| record_words.get(i).copied().unwrap_or(0);
     let wart_deltas = t.wart_deltas as u32;
     let mut flags = vec![0u8; 2 * m_r as usize];
     let (mut exceptions, mut records) = (0usize, 0usize);

@@ -178,6 +178,25 @@ impl<W: Words> Packed<W> {
         used == 0 || self.words.at(self.words.count() - 1) >> used == 0
     }
 
+    /// The words every element stands for, in order: one pass over the stored words, each
+    /// read once (the readers' linear checks).
+    pub fn iter(&self) -> impl Iterator<Item = u32> + '_ {
+        let (mut next_word, mut buffer, mut have) = (0usize, 0u64, 0u32);
+        (0..self.len as usize).map(move |i| {
+            let field = self.fields[i % 2];
+            let width = field.width as u32;
+            if have < width {
+                buffer |= (self.words.at(next_word) as u64) << have;
+                next_word += 1;
+                have += 32;
+            }
+            let f = buffer as u32 & low_bits(width);
+            buffer >>= width;
+            have -= width;
+            field.decode(f)
+        })
+    }
+
     /// The same list over other words (the same fields).
     pub fn map_words<'s, V: Words>(&'s self, f: impl FnOnce(&'s W) -> V) -> Packed<V> {
         Packed {
@@ -262,6 +281,7 @@ mod tests {
             let packed = Packed::pack(&words, fields).unwrap();
             let back: Vec<u32> = (0..words.len()).map(|i| packed.at(i)).collect();
             assert_eq!(back, words, "{fields:?}");
+            assert_eq!(packed.iter().collect::<Vec<_>>(), words, "{fields:?}");
             assert!(packed.padding_is_zero());
         }
     }
