@@ -223,9 +223,14 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
         &t0_explicit,
         &t.c,
     ];
-    let mut packed = lists.into_iter().zip(fields).map(|(words, fields)| {
-        Packed::pack(words, fields).expect("every word is in the range its field was sized for")
-    });
+    let mut packed = Vec::with_capacity(lists.len());
+    for (k, (words, fields)) in lists.into_iter().zip(fields).enumerate() {
+        // Every word is in the range its field was sized for (the rules require it).
+        packed.push(Packed::pack(words, fields).ok_or_else(|| {
+            Error::Internal(format!("zipper: list {k} has a word wider than its field"))
+        })?);
+    }
+    let mut packed = packed.into_iter();
     let mut list = || packed.next().expect("seven lists");
     let z = ZipperTables {
         ring_starts: t.ring_starts.clone(),
