@@ -93,6 +93,19 @@ impl<'a> Fields<'a> {
 
     /// Checks that the f32s in bytes `range` of the section are finite.
     pub fn expect_finite(&self, range: std::ops::Range<usize>, rule: Rule) -> Result<(), Error> {
+        // A pass without branches first (exponent bits all set: infinite or NaN), 64 values
+        // at a time so that it vectorizes; the value at fault is looked for only when it fails.
+        let bytes = &self.section.bytes[range.start..range.end.max(range.start)];
+        let exponent = |w: &[u8]| {
+            let bits = u32::from_le_bytes(w.try_into().expect("four bytes"));
+            (bits & 0x7F80_0000 == 0x7F80_0000) as u32
+        };
+        let all_finite = bytes
+            .chunks(4 * 64)
+            .all(|chunk| chunk.chunks_exact(4).fold(0, |bad, w| bad | exponent(w)) == 0);
+        if all_finite && bytes.len() % 4 == 0 {
+            return Ok(());
+        }
         for at in range.step_by(4) {
             let x = le_f32(self.section.bytes, at);
             if !x.is_finite() {
@@ -100,5 +113,54 @@ impl<'a> Fields<'a> {
             }
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::format::Tag;
+
+    /// The branch-free pass and the value-by-value loop agree: a non-finite value is found
+    /// wherever it lies (first value, the end of a 64-value chunk, the next chunk, the last
+    /// value) and named at its offset; every finite value passes.
+    #[test]
+    fn non_finite_values_are_found_wherever_they_lie() {
+        let finite = [
+            0.0f32,
+            -0.0,
+            1.5,
+            f32::MAX,
+            f32::MIN,
+            f32::MIN_POSITIVE,
+            1e-45,
+        ];
+        let values: Vec<f32> = (0..1000).map(|i| finite[i % finite.len()]).collect();
+        let bytes_of =
+            |values: &[f32]| -> Vec<u8> { values.iter().flat_map(|x| x.to_le_bytes()).collect() };
+        let check = |bytes: &[u8]| {
+            let section = Section {
+                tag: Tag::MESH,
+                flags: Default::default(),
+                offset: 100,
+                bytes,
+            };
+            Fields::new(section).expect_finite(8..bytes.len(), Rule(14))
+        };
+        assert!(check(&bytes_of(&values)).is_ok());
+        for at in [2, 65, 66, 130, 999] {
+            for bad in [f32::INFINITY, f32::NEG_INFINITY, f32::NAN] {
+                let mut v = values.clone();
+                v[at] = bad;
+                match check(&bytes_of(&v)) {
+                    Err(Error::Format(e)) => assert_eq!(e.offset, 100 + 4 * at as u64),
+                    other => panic!("{at}: {other:?}"),
+                }
+            }
+        }
+        // Before the range: not checked.
+        let mut v = values.clone();
+        v[1] = f32::NAN;
+        assert!(check(&bytes_of(&v)).is_ok());
     }
 }
