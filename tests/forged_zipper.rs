@@ -476,3 +476,26 @@ fn the_fuzz_targets_reach_the_zipper() {
     assert!(zipper.contains(&0x05) && zipper.contains(&0x95) && zipper.contains(&0x55));
     assert_eq!(zipper.len(), 32);
 }
+
+/// A mesh without triangles has no ring and no T0 rows: its corner fields are zero bits
+/// wide, so a header may claim billions of opposite pairs in a file of a few bytes. The
+/// reader neither panics nor walks them: the pairs are not used by any slot ([V58]).
+#[test]
+fn zero_width_lists_of_any_length() {
+    let mesh = lrmesh::Mesh {
+        positions: vec![[0.0; 3], [1.0, 0.0, 0.0]],
+        ..Default::default()
+    };
+    let options = lrmesh::write::EncodeOptions {
+        connectivity: lrmesh::write::Connectivity::Zipper,
+        ..Default::default()
+    };
+    let bytes = lrmesh::write::encode(&mesh, &options).unwrap();
+    open_verified(&bytes, &Limits::default()).unwrap();
+    let header = ZiprHeader::read(&payload(&bytes, Tag::ZIPR));
+    assert_eq!((header.m_r, header.t0), (0, 0));
+    for pairs in [1, 0x8000_0000, u32::MAX] {
+        let bad = forge(&bytes, Tag::ZIPR, |p| put(p, 24, pairs));
+        assert_eq!(format_error(&bad).rule, Rule(58), "{pairs} pairs");
+    }
+}

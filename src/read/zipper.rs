@@ -81,8 +81,15 @@ pub(super) fn zipper_tables<'a>(
         words;
     // The seven lists, words or bit fields (PACKED_LISTS), read as words.
     let lengths = h.list_lengths().expect("m_r <= m: checked above");
+    let Ok(lengths) = lengths
+        .map(usize::try_from)
+        .into_iter()
+        .collect::<Result<Vec<_>, _>>()
+    else {
+        return Err(f.err(16, Rule(56), "list lengths exceed the address space"));
+    };
     let fields = h.list_fields();
-    let list = |i: usize, words: LeWords<'a>| Packed::new(words, lengths[i] as usize, fields[i]);
+    let list = |i: usize, words: LeWords<'a>| Packed::new(words, lengths[i], fields[i]);
     let lists = [
         list(0, exceptions),
         list(1, records),

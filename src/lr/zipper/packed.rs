@@ -152,8 +152,8 @@ pub fn first_bit(fields: [Field; 2], i: usize) -> u64 {
 pub struct Packed<W> {
     /// The stored words.
     pub(crate) words: W,
-    /// Elements.
-    len: u32,
+    /// Elements (a list of zero-width fields may have more than 2^32 in a small file).
+    len: usize,
     /// Fields of even and odd elements.
     fields: [Field; 2],
 }
@@ -162,7 +162,6 @@ impl<W: Words> Packed<W> {
     /// `len` elements of `fields` in `words`, which must hold [`packed_words`] of them.
     pub fn new(words: W, len: usize, fields: [Field; 2]) -> Packed<W> {
         debug_assert_eq!(words.count() as u64, packed_words(len as u64, fields));
-        let len = u32::try_from(len).expect("lists of at most 2^32 - 1 elements");
         Packed { words, len, fields }
     }
 
@@ -174,7 +173,7 @@ impl<W: Words> Packed<W> {
 
     /// Whether the bits of the last word past the last element are 0.
     pub fn padding_is_zero(&self) -> bool {
-        let used = (self.bit(self.len as usize) % 32) as u32;
+        let used = (self.bit(self.len) % 32) as u32;
         used == 0 || self.words.at(self.words.count() - 1) >> used == 0
     }
 
@@ -182,7 +181,7 @@ impl<W: Words> Packed<W> {
     /// read once (the readers' linear checks).
     pub fn iter(&self) -> impl Iterator<Item = u32> + '_ {
         let (mut next_word, mut buffer, mut have) = (0usize, 0u64, 0u32);
-        (0..self.len as usize).map(move |i| {
+        (0..self.len).map(move |i| {
             let field = self.fields[i % 2];
             let width = field.width as u32;
             if have < width {
@@ -228,7 +227,7 @@ impl Packed<Vec<u32>> {
         }
         Some(Packed {
             words: out,
-            len: u32::try_from(words.len()).ok()?,
+            len: words.len(),
             fields,
         })
     }
@@ -238,11 +237,7 @@ impl<W: Words> Words for Packed<W> {
     /// The word of the unpacked layout that element `i` stands for.
     #[inline(always)]
     fn at(&self, i: usize) -> u32 {
-        assert!(
-            i < self.len as usize,
-            "element {i} of a list of {}",
-            self.len
-        );
+        assert!(i < self.len, "element {i} of a list of {}", self.len);
         let field = self.fields[i % 2];
         if field.width == 0 {
             return field.decode(0);
@@ -257,7 +252,7 @@ impl<W: Words> Words for Packed<W> {
     }
 
     fn count(&self) -> usize {
-        self.len as usize
+        self.len
     }
 }
 
