@@ -101,7 +101,9 @@ pub(super) fn zipper_tables<'a>(
     ];
     // Where element `i` of an array starts (an error names its byte).
     let offset_of = |array: usize, i: usize| match array {
-        EXCEPTIONS..=C => starts[array] + (first_bit(fields[array - EXCEPTIONS], i) / 8) as usize,
+        EXCEPTIONS..=C => {
+            starts[array] + (first_bit(fields[array - EXCEPTIONS], i as u64) / 8) as usize
+        }
         _ => starts[array] + 4 * i,
     };
     let word_err = |array: usize, i: usize, rule: Rule, message: String| {

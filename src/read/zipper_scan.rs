@@ -58,18 +58,17 @@ pub(super) fn tip_word_holds(word: u32, m: u32) -> bool {
     (word & !(WART | VALUE) == 0) & (word & VALUE < m)
 }
 
-/// [V58]'s rules on the exception and record words alone: every such word a WART flag and
-/// a vertex, record word 1 what FORMAT.md §3.5e allows, the pairs used once each in order.
-fn words_hold(t: &Tables, m: u32) -> bool {
+/// [V58]'s rules on the exception and record words alone (`records`: both words of each
+/// record, in order): every such word a WART flag and a vertex, record word 1 what
+/// FORMAT.md §3.5e allows, the pairs used once each in order.
+fn words_hold(t: &Tables, m: u32, exceptions: &[u32], records: &[u32]) -> bool {
     let n0 = t.t0_count() as u64;
-    let exceptions_hold = t
-        .exceptions
+    let exceptions_hold = exceptions
         .iter()
-        .fold(true, |ok, word| ok & tip_word_holds(word, m));
+        .fold(true, |ok, &word| ok & tip_word_holds(word, m));
     let mut pairs = 0usize;
-    let mut records = t.records.iter();
-    let records_hold = (0..t.record_count()).all(|_| {
-        let (first, second) = (records.next().unwrap_or(0), records.next().unwrap_or(0));
+    let records_hold = records.chunks_exact(RECORD_WORDS).all(|record| {
+        let (first, second) = (record[0], record[1]);
         let value = second & ((1 << STATE_SHIFT) - 1);
         let second_holds = match second >> STATE_SHIFT {
             STORES_NONE => value == 0,
@@ -84,7 +83,7 @@ fn words_hold(t: &Tables, m: u32) -> bool {
     });
     exceptions_hold
         && records_hold
-        && t.records.count() % RECORD_WORDS == 0
+        && records.len() % RECORD_WORDS == 0
         && 2 * pairs == t.pairs.count()
 }
 
@@ -152,17 +151,17 @@ fn ring_ends(t: &Tables, first: u32, count: usize) -> u64 {
 /// [V58] on every slot, and the slot flags, in slot order; `None` when the rule fails.
 pub(super) fn scan_slots(t: &Tables) -> Option<Vec<u8>> {
     let (m, m_r) = (t.m, t.m_r);
-    if !words_hold(t, m) {
+    // The exception and record words decoded once, in order, for both checks (the lists may
+    // be bit fields: a field read in the slot loop kept its step from being inlined).
+    let exception_words: Vec<u32> = t.exceptions.iter().collect();
+    let record_words: Vec<u32> = t.records.iter().collect();
+    if !words_hold(t, m, &exception_words, &record_words) {
         return None;
     }
     let (exception_count, record_count) = (t.exceptions.count(), t.record_count());
-    // The exception words and the records' first words decoded once, in order (the lists
-    // may be bit fields: a field read in the slot loop kept its step from being inlined).
-    let exception_words: Vec<u32> = t.exceptions.iter().collect();
-    let record_words: Vec<u32> = t.records.iter().step_by(RECORD_WORDS).collect();
     // Word 0 in place of a word past the end: the counts below fail the scan then.
     let exception = |i: usize| exception_words.get(i).copied().unwrap_or(0);
-    let record = |i: usize| record_words.get(i).copied().unwrap_or(0);
+    let record = |i: usize| record_words.get(RECORD_WORDS * i).copied().unwrap_or(0);
     let wart_deltas = t.wart_deltas as u32;
     let mut flags = vec![0u8; 2 * m_r as usize];
     let (mut exceptions, mut records) = (0usize, 0usize);

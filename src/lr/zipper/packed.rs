@@ -135,16 +135,15 @@ pub fn list_fields(
 /// Words that `count` elements of `fields` take (even elements of `fields[0]`, odd of
 /// `fields[1]`).
 pub fn packed_words(count: u64, fields: [Field; 2]) -> u64 {
-    let [a, b] = fields.map(|f| f.width as u64);
-    (count / 2 * (a + b) + count % 2 * a).div_ceil(32)
+    first_bit(fields, count).div_ceil(32)
 }
 
 /// The first bit of element `i` of a list of `fields` (even elements of `fields[0]`, odd of
-/// `fields[1]`).
+/// `fields[1]`); for `i` the list's length, the bits it takes.
 #[inline(always)]
-pub fn first_bit(fields: [Field; 2], i: usize) -> u64 {
+pub fn first_bit(fields: [Field; 2], i: u64) -> u64 {
     let [a, b] = fields.map(|f| f.width as u64);
-    (i / 2) as u64 * (a + b) + (i % 2) as u64 * a
+    i / 2 * (a + b) + i % 2 * a
 }
 
 /// A list of fields over words `W`, read as the words of the unpacked layout.
@@ -168,7 +167,7 @@ impl<W: Words> Packed<W> {
     /// The first bit of element `i`.
     #[inline(always)]
     pub fn bit(&self, i: usize) -> u64 {
-        first_bit(self.fields, i)
+        first_bit(self.fields, i as u64)
     }
 
     /// Whether the bits of the last word past the last element are 0.
