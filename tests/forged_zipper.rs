@@ -45,6 +45,12 @@ fn zipr_at(bytes: &[u8], index: usize, i: usize) -> u64 {
     section_at(bytes, Tag::ZIPR) + (bit / 8) as u64
 }
 
+/// Asserts that element `i` of array `index` set to `x` breaks `rule`, named at that element.
+fn field_breaks(bytes: &[u8], index: usize, i: usize, x: u32, rule: u8, words: &str) {
+    let bad = zipr_set(bytes, index, i, x);
+    breaks(&bad, rule, "ZIPR", zipr_at(bytes, index, i), words);
+}
+
 /// Element `i` of array `index`: a word, or a list's field as stored.
 fn zipr_get(bytes: &[u8], index: usize, i: usize) -> u32 {
     let p = payload(bytes, Tag::ZIPR);
@@ -159,22 +165,8 @@ fn v58_symbols_and_heads() {
     let bytes = vector("torus_with_t0.zipper.lrm");
     // 25 ring vertices: 50 slots, two groups of three words; one block, whose head is two
     // words (SHORT_HEADS): the anchors, then the counts before it (16 bits each).
-    let counts = zipr_at(&bytes, HEADS, 1);
-    breaks(
-        &zipr_set(&bytes, HEADS, 1, 1),
-        58,
-        "ZIPR",
-        counts,
-        "exceptions",
-    );
-    let records = 1 << 16;
-    breaks(
-        &zipr_set(&bytes, HEADS, 1, records),
-        58,
-        "ZIPR",
-        counts,
-        "records",
-    );
+    field_breaks(&bytes, HEADS, 1, 1, 58, "exceptions");
+    field_breaks(&bytes, HEADS, 1, 1 << 16, 58, "records");
     // A symbol past the last slot.
     let w = zipr_get(&bytes, PLANES, 3);
     let bad = zipr_set(&bytes, PLANES, 3, w | 1 << 20);
@@ -189,62 +181,22 @@ fn v58_symbols_and_heads() {
     // tip out of range (6-bit fields: the WART flag at bit 5).
     let old = vector("torus_with_t0.zipper-1.9.lrm");
     let x = zipr_get(&old, EXCEPTIONS, 0);
-    let packed = |bad_word| zipr_set(&bytes, EXCEPTIONS, 0, bad_word);
-    for bad in [
-        zipr_set(&old, EXCEPTIONS, 0, x | 1 << 31),
-        zipr_set(&old, EXCEPTIONS, 0, 25),
-        zipr_set(&old, EXCEPTIONS, 0, 0x3FFF_FFFF),
-        packed(25),
-        packed(31),
-        packed(1 << 5 | 30),
-    ] {
-        let at = if bad.len() == old.len() { &old } else { &bytes };
-        breaks(
-            &bad,
-            58,
-            "ZIPR",
-            zipr_at(at, EXCEPTIONS, 0),
-            "WART flag and a vertex",
-        );
+    for word in [x | 1 << 31, 25, 0x3FFF_FFFF] {
+        field_breaks(&old, EXCEPTIONS, 0, word, 58, "WART flag and a vertex");
+    }
+    for field in [25, 31, 1 << 5 | 30] {
+        field_breaks(&bytes, EXCEPTIONS, 0, field, 58, "WART flag and a vertex");
     }
     // Record word 0 likewise; word 1: each state with a value it does not allow (packed:
     // the state in the top two bits of a 6-bit field, values below 4 n0 = 12).
-    let bad = zipr_set(&old, RECORDS, 0, 1 << 31);
-    breaks(
-        &bad,
-        58,
-        "ZIPR",
-        zipr_at(&old, RECORDS, 0),
-        "WART flag and a vertex",
-    );
-    let bad = zipr_set(&bytes, RECORDS, 0, 27);
-    breaks(
-        &bad,
-        58,
-        "ZIPR",
-        zipr_at(&bytes, RECORDS, 0),
-        "WART flag and a vertex",
-    );
+    field_breaks(&old, RECORDS, 0, 1 << 31, 58, "WART flag and a vertex");
+    field_breaks(&bytes, RECORDS, 0, 27, 58, "WART flag and a vertex");
     for state_word in [1, 1 << 30 | 16, 1 << 30 | 3, 3 << 30 | 1] {
-        let bad = zipr_set(&old, RECORDS, 1, state_word);
-        breaks(
-            &bad,
-            58,
-            "ZIPR",
-            zipr_at(&old, RECORDS, 1),
-            "no valid opposite",
-        );
+        field_breaks(&old, RECORDS, 1, state_word, 58, "no valid opposite");
     }
     assert_eq!(zipr_width(&bytes, RECORDS, 1), 6);
     for state_field in [1, 1 << 4 | 12, 1 << 4 | 3, 3 << 4 | 1] {
-        let bad = zipr_set(&bytes, RECORDS, 1, state_field);
-        breaks(
-            &bad,
-            58,
-            "ZIPR",
-            zipr_at(&bytes, RECORDS, 1),
-            "no valid opposite",
-        );
+        field_breaks(&bytes, RECORDS, 1, state_field, 58, "no valid opposite");
     }
     // A delta tip out of range: the left anchor's offset from vertex 0 made negative.
     let bad = zipr_set(&bytes, HEADS, 0, 0x8000);
@@ -263,8 +215,7 @@ fn v58_symbols_and_heads() {
 #[test]
 fn v59_t0_rows() {
     let bytes = vector("genus3_torus.zipper.lrm"); // m = 19, 10 rows, 14 explicit opposites
-    let bad = zipr_set(&bytes, T0_V, 4, 19);
-    breaks(&bad, 59, "ZIPR", zipr_at(&bytes, T0_V, 4), "out of range");
+    field_breaks(&bytes, T0_V, 4, 19, 59, "out of range");
     let codes: Vec<u32> = (0..10).map(|j| zipr_get(&bytes, T0_CODES, j)).collect();
     let bad = zipr_set(&bytes, T0_CODES, 0, codes[0] + (1 << 6));
     breaks(
@@ -289,28 +240,14 @@ fn v59_t0_rows() {
 #[test]
 fn v60_corners_and_lr_rules() {
     let defective = vector("defective_torus.zipper.lrm"); // 7 off-ring vertices
-    let at = zipr_at(&defective, C, 0);
-    // Packed corners are stored plus one (0 for NONE): corner 3, a corner past the T0
-    // rows, the largest the field holds.
+                                                          // Packed corners are stored plus one (0 for NONE): corner 3, a corner past the T0
+                                                          // rows, the largest the field holds.
     let width = zipr_width(&defective, C, 0);
     for x in [4, 8 * 16 + 4 * 5 + 2, (1 << width) - 1] {
-        breaks(
-            &zipr_set(&defective, C, 0, x),
-            60,
-            "ZIPR",
-            at,
-            "not a corner",
-        );
+        field_breaks(&defective, C, 0, x, 60, "not a corner");
     }
     let bytes = vector("genus3_torus.zipper.lrm"); // m = 19, explicit T0 opposites
-    let at = zipr_at(&bytes, EXPLICIT, 0);
-    breaks(
-        &zipr_set(&bytes, EXPLICIT, 0, 8),
-        60,
-        "ZIPR",
-        at,
-        "not a corner",
-    );
+    field_breaks(&bytes, EXPLICIT, 0, 8, 60, "not a corner");
     // An exception's tip moved to another vertex: the triangles no longer fit together,
     // which only the verifying reader sees.
     let x = zipr_get(&bytes, EXCEPTIONS, 0);
