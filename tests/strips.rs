@@ -353,3 +353,80 @@ proptest! {
         check_cts_container(&mesh);
     }
 }
+
+/// The twins the adjacency documents, found the slow way: on each edge, the lowest half-edge
+/// of one direction pairs with the lowest of the other; triangles with a repeated vertex or
+/// a vertex out of range take no part.
+fn reference_twins(vertex_count: usize, tris: &[[u32; 3]]) -> Vec<Option<u32>> {
+    use std::collections::HashMap;
+    let usable = |t: &[u32; 3]| {
+        t.iter().all(|&v| (v as usize) < vertex_count)
+            && t[0] != t[1]
+            && t[1] != t[2]
+            && t[0] != t[2]
+    };
+    let mut lowest: HashMap<(u32, u32), u32> = HashMap::new();
+    for (t, tri) in tris.iter().enumerate() {
+        if !usable(tri) {
+            continue;
+        }
+        for i in 0..3 {
+            let h = 3 * t as u32 + i as u32;
+            lowest.entry((tri[i], tri[(i + 1) % 3])).or_insert(h);
+        }
+    }
+    let mut twins = vec![None; 3 * tris.len()];
+    for (&(x, y), &h) in &lowest {
+        if let Some(&g) = lowest.get(&(y, x)) {
+            twins[h as usize] = Some(g);
+        }
+    }
+    twins
+}
+
+/// `Adjacency::build` links exactly the reference's twins and counts each triangle's
+/// neighbours, on soups full of repeated and non-manifold edges, on meshes in scattered
+/// order (the open-edge table grows) and on meshes large enough for its sweeps.
+fn check_adjacency(vertex_count: usize, tris: &[[u32; 3]]) {
+    use lrmesh::strips::Adjacency;
+    let adj = Adjacency::build(vertex_count, tris);
+    let want = reference_twins(vertex_count, tris);
+    for (h, &w) in want.iter().enumerate() {
+        assert_eq!(adj.twin(h as u32), w, "half-edge {h}");
+    }
+    for t in 0..tris.len() as u32 {
+        let neighbours = (0..3).filter(|i| adj.twin(3 * t + i).is_some()).count();
+        if adj.is_set_aside(t) {
+            assert_eq!(neighbours, 0);
+        }
+    }
+}
+
+#[test]
+fn adjacency_matches_the_reference_on_large_and_scattered_meshes() {
+    let mut rng = Rng::new(7);
+    let torus = generate::irregular_torus(40_000, 3);
+    check_adjacency(torus.positions.len(), &torus.triangles);
+    let mut scattered = torus.triangles.clone();
+    for i in (1..scattered.len()).rev() {
+        scattered.swap(i, rng.below(i as u32 + 1) as usize);
+    }
+    check_adjacency(torus.positions.len(), &scattered);
+    let soup = generate::soup(60, 5_000, &mut rng);
+    check_adjacency(soup.positions.len(), &soup.triangles);
+    // Out-of-range and degenerate triangles among the rest.
+    let mut odd = soup.triangles.clone();
+    odd.extend([[0, 0, 1], [1, 2, 60], [u32::MAX, 0, 1]]);
+    check_adjacency(60, &odd);
+    check_adjacency(0, &odd);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn adjacency_matches_the_reference(kind in 0u32..6, seed in 0u64..1000, size in 20u32..3000) {
+        let mesh = generated(kind, seed, size);
+        check_adjacency(mesh.positions.len(), &mesh.triangles);
+    }
+}
