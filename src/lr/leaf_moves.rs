@@ -40,6 +40,8 @@ pub(super) struct LeafMoves {
     /// Triangles within two edges of a costly T0 when a strict pass starts: a strict move
     /// can only lower the cost when its leaf or its new triangle is among them.
     hot: Marks,
+    /// The triangles in `set` while [`affected`] fills it.
+    listed: Marks,
 }
 
 impl LeafMoves {
@@ -51,6 +53,7 @@ impl LeafMoves {
             near: Marks::new(mesh.triangle_count()),
             near_next: Marks::new(mesh.triangle_count()),
             hot: Marks::new(mesh.triangle_count()),
+            listed: Marks::new(mesh.triangle_count()),
         }
     }
 
@@ -142,33 +145,59 @@ impl LeafMoves {
             if !candidate || !(sideways || self.hot.get(a as usize) || self.hot.get(f as usize)) {
                 continue;
             }
-            affected(mesh, a, f, &mut self.set);
+            affected(mesh, a, f, &mut self.set, &mut self.listed);
             let before = self.cost(mesh);
             // Nothing to lower, and a strict pass keeps nothing else.
             if before == 0 && !sideways {
                 continue;
             }
-            self.flip(mesh, tm, a, f, !side);
+            let saved = self.flip(mesh, tm, a, f, !side);
             let after = self.cost(mesh);
             if after < before || (sideways && after == before) {
                 return Some(after < before);
             }
-            self.flip(mesh, tm, a, f, side);
+            self.undo(tm, a, f, side, &saved);
         }
         None
     }
 
     /// Puts `a` on side `a_side` and `f` on the other, and updates the ring edges of both
-    /// and of their neighbours.
-    fn flip(&mut self, mesh: &Closed, tm: &mut Marks, a: u32, f: u32, a_side: bool) {
+    /// and of their neighbours; returns the eight triangles and their ring edges before, for
+    /// [`undo`](Self::undo).
+    fn flip(
+        &mut self,
+        mesh: &Closed,
+        tm: &mut Marks,
+        a: u32,
+        f: u32,
+        a_side: bool,
+    ) -> [(u32, u8); 8] {
         tm.put(a as usize, a_side);
         tm.put(f as usize, !a_side);
+        let mut saved = [(0, 0); 8];
+        let mut k = 0;
         for t in [a, f] {
-            self.edges[t as usize] = ring_edges(mesh, tm, t) as u8;
-            for i in 0..3 {
-                let u = mesh.o(3 * t + i) / 3;
+            for u in [
+                t,
+                mesh.o(3 * t) / 3,
+                mesh.o(3 * t + 1) / 3,
+                mesh.o(3 * t + 2) / 3,
+            ] {
+                saved[k] = (u, self.edges[u as usize]);
                 self.edges[u as usize] = ring_edges(mesh, tm, u) as u8;
+                k += 1;
             }
+        }
+        saved
+    }
+
+    /// Takes back a [`flip`](Self::flip) that put `a` off side `a_side`: the sides, and the
+    /// ring edges it saved (last first, so that a triangle saved twice gets its first value).
+    fn undo(&mut self, tm: &mut Marks, a: u32, f: u32, a_side: bool, saved: &[(u32, u8); 8]) {
+        tm.put(a as usize, a_side);
+        tm.put(f as usize, !a_side);
+        for &(u, edges) in saved.iter().rev() {
+            self.edges[u as usize] = edges;
         }
     }
 
@@ -185,18 +214,29 @@ impl LeafMoves {
     }
 }
 
-/// The triangles whose cost a move of `a` and `f` can change: those two, their neighbours
-/// (whose ring edges change) and the neighbours' neighbours (whose wart can change).
-fn affected(mesh: &Closed, a: u32, f: u32, out: &mut Vec<u32>) {
+/// The triangles whose cost a move of `a` and `f` can change, into `out` once each: those
+/// two, their neighbours (whose ring edges change) and the neighbours' neighbours (whose wart
+/// can change). `listed` marks the ones in `out` while it is filled (cleared after): some
+/// twenty triangles, many met twice, which a sort took longer to deduplicate.
+fn affected(mesh: &Closed, a: u32, f: u32, out: &mut Vec<u32>, listed: &mut Marks) {
     out.clear();
+    let mut add = |t: u32| {
+        if !listed.get(t as usize) {
+            listed.set(t as usize);
+            out.push(t);
+        }
+    };
     for t in [a, f] {
-        out.push(t);
+        add(t);
         for i in 0..3 {
             let u = mesh.o(3 * t + i) / 3;
-            out.push(u);
-            out.extend((0..3).map(|k| mesh.o(3 * u + k) / 3));
+            add(u);
+            for k in 0..3 {
+                add(mesh.o(3 * u + k) / 3);
+            }
         }
     }
-    out.sort_unstable();
-    out.dedup();
+    for &t in out.iter() {
+        listed.clear(t as usize);
+    }
 }
