@@ -23,7 +23,8 @@ fn before_t2(t: &LrTables<Vec<u32>>, v: u32, side: usize) -> bool {
 }
 
 /// What slot `(v, side)` of `t` stores after chain value `chain`: its symbol, the chain
-/// value after it, and the words it adds to the exception or record list. A slot
+/// value after it, and the word (WART flag and tip) it adds to the exception or record list,
+/// if any. A slot
 /// `before_t2` a canonical T2 is coded for the `WART_DELTAS` reading: a wart as a delta
 /// when its tip is a small decrement of the chain, the redundant copy as symbol 5 on either
 /// side, anything else as an exception.
@@ -33,34 +34,34 @@ fn symbol(
     side: usize,
     chain: u32,
     before_t2: bool,
-) -> (u32, u32, Vec<u32>) {
+) -> (u32, u32, Option<u32>) {
     let entry = t.entry(v, side);
     let tip = t.tip(v, side);
     let stored = (entry & WART) | tip;
     if entry & IRREGULAR != 0 {
-        return (IRREGULAR_SLOT, tip, vec![stored]);
+        return (IRREGULAR_SLOT, tip, Some(stored));
     }
     let delta = chain.wrapping_sub(tip);
     let next_next = t.ring_next(t.ring_next(v));
     if before_t2 {
         return match delta {
-            0..=3 if entry & WART != 0 => (delta, tip, vec![]),
-            _ if entry & WART == 0 && tip == next_next => (NEXT_NEXT_OR_NULL, chain, vec![]),
-            _ => (EXCEPTION, tip, vec![stored]),
+            0..=3 if entry & WART != 0 => (delta, tip, None),
+            _ if entry & WART == 0 && tip == next_next => (NEXT_NEXT_OR_NULL, chain, None),
+            _ => (EXCEPTION, tip, Some(stored)),
         };
     }
     if entry & WART != 0 {
-        return (EXCEPTION, tip, vec![stored]);
+        return (EXCEPTION, tip, Some(stored));
     }
     if tip == t.ring_prev(v) {
-        return (PREVIOUS, chain, vec![]);
+        return (PREVIOUS, chain, None);
     }
     if tip == if side == LEFT { next_next } else { NULL } {
-        return (NEXT_NEXT_OR_NULL, chain, vec![]);
+        return (NEXT_NEXT_OR_NULL, chain, None);
     }
     match delta {
-        0..=3 => (delta, tip, vec![]),
-        _ => (EXCEPTION, tip, vec![stored]),
+        0..=3 => (delta, tip, None),
+        _ => (EXCEPTION, tip, Some(stored)),
     }
 }
 
@@ -144,16 +145,16 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
         for v in first..m_r.min(first + (1 << BLOCK_SHIFT)) {
             for (side, chain) in chain.iter_mut().enumerate() {
                 let before_t2 = before_t2(t, v, side);
-                let (s, next, words) = symbol(t, v, side, *chain, before_t2);
+                let (s, next, word) = symbol(t, v, side, *chain, before_t2);
                 *chain = next;
                 // A delta or a right symbol 5 before a canonical T2 reads differently
                 // without the flag.
                 wart_deltas |=
                     before_t2 && (s < DELTAS || (s == NEXT_NEXT_OR_NULL && side != LEFT));
                 match s {
-                    EXCEPTION => exceptions.extend(words),
+                    EXCEPTION => exceptions.extend(word),
                     IRREGULAR_SLOT => {
-                        records.extend(words);
+                        records.extend(word);
                         records.push(stored_opposites(t, v, side, &mut pairs)?);
                     }
                     _ => {}
