@@ -24,10 +24,9 @@ fn before_t2(t: &LrTables<Vec<u32>>, v: u32, side: usize) -> bool {
 
 /// What slot `(v, side)` of `t` stores after chain value `chain`: its symbol, the chain
 /// value after it, and the word (WART flag and tip) it adds to the exception or record list,
-/// if any. A slot
-/// `before_t2` a canonical T2 is coded for the `WART_DELTAS` reading: a wart as a delta
-/// when its tip is a small decrement of the chain, the redundant copy as symbol 5 on either
-/// side, anything else as an exception.
+/// if any. A slot `before_t2` a canonical T2 is coded for the `WART_DELTAS` reading: a wart
+/// as a delta when its tip is a small decrement of the chain, the redundant copy as symbol 5
+/// on either side, anything else as an exception.
 fn symbol(
     t: &LrTables<Vec<u32>>,
     v: u32,
