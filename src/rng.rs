@@ -23,6 +23,13 @@ impl Rng {
     pub fn below(&mut self, n: u32) -> u32 {
         (((self.next_u64() >> 32) * n as u64) >> 32) as u32
     }
+    /// Puts `items` in a random order (Fisher–Yates, from the last item down).
+    #[cfg_attr(not(feature = "generate"), allow(dead_code))]
+    pub fn shuffle<T>(&mut self, items: &mut [T]) {
+        for i in (1..items.len()).rev() {
+            items.swap(i, self.below(i as u32 + 1) as usize);
+        }
+    }
     /// A number in `[0, 1)`.
     #[cfg_attr(not(feature = "generate"), allow(dead_code))]
     pub fn unit(&mut self) -> f32 {

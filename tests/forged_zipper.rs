@@ -240,9 +240,9 @@ fn v59_t0_rows() {
 #[test]
 fn v60_corners_and_lr_rules() {
     let defective = vector("defective_torus.zipper.lrm"); // 7 off-ring vertices
-                                                          // Packed corners are stored plus one (0 for NONE): corner 3, a corner past the T0
-                                                          // rows, the largest the field holds.
     let width = zipr_width(&defective, C, 0);
+    // Packed corners are stored plus one (0 for NONE): corner 3, a corner past the T0
+    // rows, the largest the field holds.
     for x in [4, 8 * 16 + 4 * 5 + 2, (1 << width) - 1] {
         field_breaks(&defective, C, 0, x, 60, "not a corner");
     }

@@ -46,9 +46,7 @@ fn large() -> Mesh {
 fn shuffle(mesh: &mut Mesh, rng: &mut Rng) {
     let n = mesh.positions.len();
     let mut rename: Vec<u32> = (0..n as u32).collect();
-    for i in (1..n).rev() {
-        rename.swap(i, rng.below(i as u32 + 1) as usize);
-    }
+    rng.shuffle(&mut rename);
     let mut positions = vec![[0.0; 3]; n];
     for (v, &p) in mesh.positions.iter().enumerate() {
         positions[rename[v] as usize] = p;
@@ -57,10 +55,7 @@ fn shuffle(mesh: &mut Mesh, rng: &mut Rng) {
     for tri in &mut mesh.triangles {
         *tri = tri.map(|v| rename[v as usize]);
     }
-    let t = mesh.triangles.len();
-    for i in (1..t).rev() {
-        mesh.triangles.swap(i, rng.below(i as u32 + 1) as usize);
-    }
+    rng.shuffle(&mut mesh.triangles);
 }
 
 /// `mesh` encoded with `options` and decoded.

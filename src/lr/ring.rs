@@ -602,9 +602,7 @@ mod tests {
             ids.dedup();
             let expected = ids.clone();
             // Shuffled, as a search lists them.
-            for i in (1..ids.len()).rev() {
-                ids.swap(i, rng.below(i as u32 + 1) as usize);
-            }
+            rng.shuffle(&mut ids);
             ascending(&mut ids);
             assert_eq!(ids, expected, "{count} ids below {range}");
         }
