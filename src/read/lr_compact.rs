@@ -180,6 +180,11 @@ pub(super) fn lr_compact_tables<'a>(
         Some((flags, canonical)) => SlotMap::with_counted_flags(flags, canonical, m_r, n0),
         None => SlotMap::new(&tables),
     };
+    #[cfg(any(test, fuzzing))]
+    assert!(
+        slots.agrees_with(&SlotMap::new(&tables)),
+        "the fast pass's slot flags are the slot loop's"
+    );
     let corner_ok = |x: u32| x == NONE || slots.is_corner(x);
     for i in 0..(m - m_r) as usize {
         let x = tables.isolated_corner(i as u32);

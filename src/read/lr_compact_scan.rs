@@ -4,9 +4,9 @@
 //! says whether the rules hold: when they do not, the reader's pair-by-pair loop finds the
 //! first fault and names it.
 
-use super::lr_rules::{ring_slot_flags, BitsSet, CANONICAL};
+use super::lr_rules::{ring_slot_flags, BitsSet, CANONICAL, JUMPS};
 use crate::lr::compact::{BLOCK_SHIFT, EXTENDED, WART_LEFT};
-use crate::lr::{CompactTables, LrLayout, NULL};
+use crate::lr::{CompactTables, NULL};
 use crate::words::{LeUnits, LeWords, Units, Words};
 
 type Tables<'a> = CompactTables<LeWords<'a>, LeUnits<'a>>;
@@ -59,14 +59,27 @@ pub(super) fn scan_pairs(t: &Tables, m: u32, one_ring: bool) -> PairScan {
     });
     // Zipped rather than indexed, so that the pass has no bounds checks and vectorizes.
     if one_ring {
+        // A slot is redundant when its tip is `v.n.n`: `v + 2`, a delta of 2, but for the
+        // last two pairs (the ring wraps), whose flags are made again below. Extended
+        // pairs get no flags here (the extended pass makes them).
         for ((v, p), slot_flags) in words.zip(flags.chunks_exact_mut(2)) {
-            let (tip, wart, fault) = pair(v, p);
+            let (fault, pair_flags, pair_canonical) = plain_flags(v, p, m);
             bad |= fault;
+            canonical += pair_canonical;
+            slot_flags.copy_from_slice(&pair_flags.to_le_bytes());
+        }
+        for v in m_r.saturating_sub(2)..m_r {
+            let p = t.pairs.at(v as usize);
+            if p >> 30 == EXTENDED {
+                continue; // flagged by the extended pass
+            }
+            let (tip, wart, _) = pair(v, p);
             let nn = (v + 2) - m_r * (v + 2 >= m_r) as u32;
             for side in 0..2 {
-                let flag = ring_slot_flags(tip[side], wart[side], 0, nn);
-                slot_flags[side] = flag;
-                canonical += (flag & CANONICAL) as u32;
+                let slot = &mut flags[2 * v as usize + side];
+                canonical -= (*slot & CANONICAL) as u32;
+                *slot = ring_slot_flags(tip[side], wart[side], 0, nn);
+                canonical += (*slot & CANONICAL) as u32;
             }
         }
     } else {
@@ -88,6 +101,35 @@ pub(super) fn scan_pairs(t: &Tables, m: u32, one_ring: bool) -> PairScan {
         flags: one_ring.then_some((flags, canonical as u64)),
         stored,
     }
+}
+
+/// Pair `v` (word `p`) read as plain, for tables of `m` vertices on one ring: whether it
+/// breaks [V35], its two slot flags (left in the low byte; none for an extended pair) and
+/// how many are canonical, with `v.n.n = v + 2`: [`ring_slot_flags`] for the deltas a plain
+/// pair stores (a tip is `NULL` for a delta of 0 and `v.n.n` for a delta of 2).
+#[inline(always)]
+fn plain_flags(v: u32, p: u32, m: u32) -> (u32, u16, u32) {
+    let config = p >> 30;
+    let plain = (config != EXTENDED) as u32;
+    let d = [short15(p), short15(p >> 15)];
+    let (mut ok, mut flags, mut canonical) = (1u32, 0u32, 0u32);
+    for (side, d) in d.into_iter().enumerate() {
+        let wart = (config == WART_LEFT + side as u32) as u32;
+        let null = (d == 0) as u32;
+        let vertex = (v.wrapping_add_signed(d) < m) as u32 & (1 ^ null);
+        // Left: a vertex; right: a vertex, or NULL without WART.
+        ok &= if side == 0 {
+            vertex
+        } else {
+            vertex | (null & (1 ^ wart))
+        };
+        let redundant = (1 ^ wart) & (d == 2) as u32;
+        let is_canonical = (1 ^ null) & (1 ^ redundant) & plain;
+        let jumps = (redundant | wart) & plain;
+        canonical += is_canonical;
+        flags |= ((is_canonical * CANONICAL as u32) | (jumps * JUMPS as u32)) << (8 * side);
+    }
+    (plain & (1 ^ ok), flags as u16, canonical)
 }
 
 /// [V35] on the extended pairs, in ring order: records tile `RECORDS`, each block's record
@@ -112,36 +154,47 @@ fn extended_pairs_hold(
         }
         ok
     };
-    for v in extended_pairs(&t.pairs) {
-        let p = t.pairs.at(v as usize);
-        if !blocks_start(
-            (v >> BLOCK_SHIFT) as usize + 1,
-            &mut next_block,
-            next_record,
-        ) {
-            return false;
-        }
-        let Some(x) = t.decode_extended(v, p) else {
-            return false;
-        };
-        if x.start != next_record || next_record + x.len > records || !x.flags_agree {
-            return false;
-        }
-        next_record += x.len;
-        stored.extend(x.opposites.into_iter().flatten().map(|c| (v, c)));
-        let nn = t.ring_next(t.ring_next(v));
-        for side in [0, 1] {
-            let (tip, wart, irregular) = (x.tips[side], x.wart[side], x.irregular[side]);
-            let right_null = tip == NULL && side == 1 && !wart;
-            if !(tip < m || right_null) || (tip == NULL && irregular) {
+    // Loops rather than a flattened iterator: its `next` was not inlined, a call per pair.
+    for (k, chunk) in t.pairs.0.chunks(4 * 64).enumerate() {
+        for i in BitsSet(extended_mask(chunk)) {
+            let v = (64 * k) as u32 + i;
+            let p = t.pairs.at(v as usize);
+            if !blocks_start(
+                (v >> BLOCK_SHIFT) as usize + 1,
+                &mut next_block,
+                next_record,
+            ) {
                 return false;
             }
+            let Some(x) = t.decode_extended(v, p) else {
+                return false;
+            };
+            // Tips in range: the left one never NULL, the right one NULL only without WART or
+            // IRREGULAR. (The record ends inside the units: `decode_extended` read it.)
+            let [left, right] = x.tips;
+            let right_null = (right == NULL) & !x.wart[1] & !x.irregular[1];
+            if !((x.start == next_record) & x.flags_agree & (left < m) & ((right < m) | right_null))
+            {
+                return false;
+            }
+            next_record += x.len;
+            for &c in x.opposites.iter().flatten() {
+                stored.push((v, c));
+            }
             if let Some((flags, canonical)) = flags.as_mut() {
-                let slot = &mut flags[2 * v as usize + side];
-                // The plain pass counted the flag it made from the pair word's bits.
-                **canonical -= (*slot & CANONICAL) as u32;
-                *slot = ring_slot_flags(tip, wart as u32, irregular as u32, nn);
-                **canonical += (*slot & CANONICAL) as u32;
+                // One ring: `v.n.n` is `v + 2` modulo `m_r`. The plain pass gave the pair no
+                // flags.
+                let nn = (v + 2) - m_r * (v + 2 >= m_r) as u32;
+                for side in [0, 1] {
+                    let flag = ring_slot_flags(
+                        x.tips[side],
+                        x.wart[side] as u32,
+                        x.irregular[side] as u32,
+                        nn,
+                    );
+                    flags[2 * v as usize + side] = flag;
+                    **canonical += (flag & CANONICAL) as u32;
+                }
             }
         }
     }
@@ -160,20 +213,38 @@ pub(super) fn stored_opposites(t: &Tables) -> Vec<(u32, u32)> {
     stored
 }
 
-/// The ring vertices whose pair is extended, in order: a mask per 64 pairs, then its set
-/// bits (a filter branching on every pair would mispredict at each of the scattered
-/// extended pairs).
+/// The ring vertices whose pair is extended, in order.
 fn extended_pairs<'b>(pairs: &'b LeWords) -> impl Iterator<Item = u32> + 'b {
-    pairs.0.chunks(4 * 64).enumerate().flat_map(|(k, chunk)| {
-        let mask = chunk
-            .chunks_exact(4)
-            .enumerate()
-            .fold(0u64, |mask, (i, w)| {
-                let p = u32::from_le_bytes(w.try_into().expect("four bytes"));
-                mask | ((p >> 30 == EXTENDED) as u64) << i
-            });
-        BitsSet(mask).map(move |i| (64 * k) as u32 + i)
-    })
+    pairs
+        .0
+        .chunks(4 * 64)
+        .enumerate()
+        .flat_map(|(k, chunk)| BitsSet(extended_mask(chunk)).map(move |i| (64 * k) as u32 + i))
+}
+
+/// Which of (up to) 64 pair words are extended, as bits (a filter branching on every pair
+/// would mispredict at each of the scattered extended pairs): a byte per pair first, in a
+/// loop that vectorizes, then eight bytes at a time by [`byte_bits`].
+#[inline(always)]
+fn extended_mask(chunk: &[u8]) -> u64 {
+    let mut extended = [0u8; 64];
+    for (e, w) in extended.iter_mut().zip(chunk.chunks_exact(4)) {
+        let p = u32::from_le_bytes(w.try_into().expect("four bytes"));
+        *e = (p >> 30 == EXTENDED) as u8;
+    }
+    extended
+        .chunks_exact(8)
+        .enumerate()
+        .fold(0u64, |mask, (i, eight)| {
+            mask | byte_bits(eight.try_into().expect("eight bytes")) << (8 * i)
+        })
+}
+
+/// Eight bytes, each 0 or 1, as the bits of a byte (byte `i` to bit `i`): one multiply moves
+/// byte `i`'s bit to bit `56 + i`, and no two of the partial products meet.
+#[inline(always)]
+fn byte_bits(bytes: [u8; 8]) -> u64 {
+    u64::from_le_bytes(bytes).wrapping_mul(0x0102_0408_1020_4080) >> 56
 }
 
 #[cfg(all(test, feature = "fuzz-checks"))]

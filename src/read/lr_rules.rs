@@ -84,7 +84,7 @@ pub(super) struct SlotMap {
 }
 
 pub(super) const CANONICAL: u8 = 1;
-const JUMPS: u8 = 2;
+pub(super) const JUMPS: u8 = 2;
 
 /// The flags of a ring slot in a [`SlotMap`], from its tip (any value with IRREGULAR), its
 /// WART and IRREGULAR flags (0 or 1) and `nn = v.n.n`: a redundant T2 copy (tip `v.n.n`,
@@ -137,6 +137,14 @@ impl SlotMap {
             m_r,
             t0,
         }
+    }
+
+    /// Whether two maps flag the same slots and count the same triangles (a fast pass's map
+    /// against [`SlotMap::new`]'s, in tests and fuzzing).
+    #[cfg(any(test, fuzzing))]
+    pub(super) fn agrees_with(&self, other: &SlotMap) -> bool {
+        (&self.flags, self.triangles, self.m_r, self.t0)
+            == (&other.flags, other.triangles, other.m_r, other.t0)
     }
 
     /// Whether `c` is a corner of a canonical triangle ([`LrLayout::is_corner`]).
