@@ -100,9 +100,11 @@ impl<'a> Fields<'a> {
             let bits = u32::from_le_bytes(w.try_into().expect("four bytes"));
             (bits & 0x7F80_0000 == 0x7F80_0000) as u32
         };
-        let all_finite = bytes
-            .chunks(4 * 64)
-            .all(|chunk| chunk.chunks_exact(4).fold(0, |bad, w| bad | exponent(w)) == 0);
+        let none_bad =
+            |values: &[u8]| values.chunks_exact(4).fold(0, |bad, w| bad | exponent(w)) == 0;
+        // Exact chunks: a loop of a fixed count unrolls, with no tail to handle per chunk.
+        let chunks = bytes.chunks_exact(4 * 64);
+        let all_finite = none_bad(chunks.remainder()) && chunks.into_iter().all(none_bad);
         if all_finite && bytes.len() % 4 == 0 {
             return Ok(());
         }
