@@ -4,7 +4,8 @@
 
 use super::fields::Fields;
 use super::lr_rules::{
-    check_rings, check_vertex_corners, ring_slot_flags, verified_boundaries, SlotMap, CANONICAL,
+    check_rings, check_vertex_corners, one_ring_next_next, ring_slot_flags, verified_boundaries,
+    SlotMap, CANONICAL,
 };
 use super::Sections;
 use crate::corner_table::NONE;
@@ -216,7 +217,7 @@ fn scan_entries(
         for ((slot, e), flag) in words.enumerate().zip(&mut flags) {
             let (value, is_irregular, wart) = check(slot, e);
             let v = (slot / 2) as u32;
-            let nn = (v + 2) - m_r * (v + 2 >= m_r) as u32;
+            let nn = one_ring_next_next(v, m_r);
             *flag = ring_slot_flags(value, wart, is_irregular, nn);
             canonical += (*flag & CANONICAL) as u32;
         }

@@ -4,7 +4,7 @@
 //! says whether the rules hold: when they do not, the reader's pair-by-pair loop finds the
 //! first fault and names it.
 
-use super::lr_rules::{ring_slot_flags, BitsSet, CANONICAL, JUMPS};
+use super::lr_rules::{one_ring_next_next, ring_slot_flags, BitsSet, CANONICAL, JUMPS};
 use crate::lr::compact::{BLOCK_SHIFT, EXTENDED, WART_LEFT};
 use crate::lr::{CompactTables, NULL};
 use crate::words::{LeUnits, LeWords, Units, Words};
@@ -74,7 +74,7 @@ pub(super) fn scan_pairs(t: &Tables, m: u32, one_ring: bool) -> PairScan {
                 continue; // flagged by the extended pass
             }
             let (tip, wart, _) = pair(v, p);
-            let nn = (v + 2) - m_r * (v + 2 >= m_r) as u32;
+            let nn = one_ring_next_next(v, m_r);
             for side in 0..2 {
                 let slot = &mut flags[2 * v as usize + side];
                 canonical -= (*slot & CANONICAL) as u32;
@@ -182,9 +182,9 @@ fn extended_pairs_hold(
                 stored.push((v, c));
             }
             if let Some((flags, canonical)) = flags.as_mut() {
-                // One ring: `v.n.n` is `v + 2` modulo `m_r`. The plain pass gave the pair no
+                // One ring (the flags are only made then). The plain pass gave the pair no
                 // flags.
-                let nn = (v + 2) - m_r * (v + 2 >= m_r) as u32;
+                let nn = one_ring_next_next(v, m_r);
                 for side in [0, 1] {
                     let flag = ring_slot_flags(
                         x.tips[side],

@@ -100,6 +100,13 @@ pub(super) fn ring_slot_flags(tip: u32, wart: u32, irregular: u32, nn: u32) -> u
     (canonical as u8 * CANONICAL) | ((redundant | wart) as u8 * JUMPS)
 }
 
+/// `v.n.n` for ring vertex `v` when the ring is the only one, of `m_r` vertices: `v + 2`,
+/// wrapped without a branch (the passes over every slot stay vectorizable).
+#[inline(always)]
+pub(super) fn one_ring_next_next(v: u32, m_r: u32) -> u32 {
+    (v + 2) - m_r * (v + 2 >= m_r) as u32
+}
+
 /// The flags of slot `(v, side)` read through the layout's operators; `nn` is `v.n.n`.
 #[inline]
 pub(super) fn layout_slot_flags<T: LrLayout>(tables: &T, v: u32, side: usize, nn: u32) -> u8 {
