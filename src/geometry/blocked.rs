@@ -244,23 +244,37 @@ impl<'a> BlockedView<'a> {
 
     /// [V45] on the records: the data starts tile the data, widths at most the maximum (0
     /// in the end record), f32 anchors finite (grid anchors cannot leave the grid). Each
-    /// record is checked without branching on its fields; the field at fault is looked for
-    /// only when one fails.
+    /// record is read from one window of its bytes, its fields at offsets fixed by the
+    /// shape, and checked without branching on them; the field at fault is looked for only
+    /// when one fails.
     fn check_directory(&self, f: &Fields, dir_at: usize, records: u64) -> Result<()> {
         let s = &self.shape;
+        let anchor_at = s.start_bits;
+        let widths_at = anchor_at + 3 * s.anchor_bits;
+        let anchor_mask = mask(s.anchor_bits);
+        let max_level = self.grid.map(|g| g.max_level() as u64);
         let mut next = 0;
         for j in 0..records {
-            let anchor = self.anchor(j);
-            let mut ok = (self.start(j) == next)
-                & self.in_range(anchor[0])
-                & self.in_range(anchor[1])
-                & self.in_range(anchor[2]);
-            let limit = if j + 1 == records { 0 } else { s.max_width };
-            for l in 0..s.levels {
-                let w = self.widths(j, l);
-                ok &= (w[0] <= limit) & (w[1] <= limit) & (w[2] <= limit);
-                next += ((w[0] + w[1] + w[2]) as u64) << l;
+            let at = self.record(j);
+            let window = RecordWindow::new(self.dir, at);
+            let bit = (at % 8) as u32;
+            let mut ok = window.bits(bit, s.start_bits) == next;
+            for k in 0..3 {
+                let a = window.bits(bit + anchor_at + k * s.anchor_bits, s.anchor_bits);
+                ok &= match max_level {
+                    Some(max) => a <= max,
+                    None => float::from_ordered((a & anchor_mask) as u32).is_finite(),
+                };
             }
+            let limit = if j + 1 == records { 0 } else { s.max_width };
+            let at = bit + widths_at;
+            // Width fields of 5 bits on a grid, 6 for f32.
+            let (fit, bits) = match s.width_bits {
+                5 => window.widths::<5>(at, s.levels, limit),
+                _ => window.widths::<6>(at, s.levels, limit),
+            };
+            ok &= fit;
+            next += bits;
             if !ok {
                 return Err(self.directory_fault(f, dir_at, j, records));
             }
@@ -357,6 +371,56 @@ impl<'a> BlockedView<'a> {
             }
         }
         Ok(())
+    }
+}
+
+/// Bytes of a directory record from its first byte, enough for any shape (a start of up to
+/// 56 bits, three 32-bit anchors, 24 widths of 6 bits, 7 bits of offset in the first byte)
+/// and an 8-byte read at the last field; bytes past the directory read as 0.
+struct RecordWindow([u8; RecordWindow::LEN]);
+
+impl RecordWindow {
+    const LEN: usize = 48;
+
+    #[inline(always)]
+    fn new(dir: &[u8], at: u64) -> RecordWindow {
+        let byte = (at / 8) as usize;
+        match dir.get(byte..byte + Self::LEN) {
+            Some(bytes) => RecordWindow(bytes.try_into().expect("LEN bytes")),
+            None => {
+                let mut window = [0u8; Self::LEN];
+                let rest = dir.get(byte..).unwrap_or_default();
+                window[..rest.len()].copy_from_slice(rest);
+                RecordWindow(window)
+            }
+        }
+    }
+
+    /// The `levels` triples of `WB`-bit widths from bit `at`: whether every width is at most
+    /// `limit`, and the bits of data they describe (a triple of level `l` stands for `2^l`
+    /// residuals). `WB` a constant, so that every shift and mask is.
+    #[inline(always)]
+    fn widths<const WB: u32>(&self, at: u32, levels: u32, limit: u32) -> (bool, u64) {
+        let (mut fit, mut bits) = (true, 0u64);
+        for l in 0..levels {
+            let triple = self.bits(at + 3 * WB * l, 3 * WB);
+            let w = [0, 1, 2].map(|k| ((triple >> (k * WB)) & mask(WB)) as u32);
+            fit &= w[0].max(w[1]).max(w[2]) <= limit;
+            bits += ((w[0] + w[1] + w[2]) as u64) << l;
+        }
+        (fit, bits)
+    }
+
+    /// The `width`-bit field (at most 57 bits) at bit `at` of the window.
+    #[inline(always)]
+    fn bits(&self, at: u32, width: u32) -> u64 {
+        let byte = (at / 8) as usize;
+        let word = self
+            .0
+            .get(byte..byte + 8)
+            .and_then(|b| b.try_into().ok())
+            .map_or(0, u64::from_le_bytes);
+        (word >> (at % 8)) & mask(width)
     }
 }
 
