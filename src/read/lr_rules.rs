@@ -100,6 +100,29 @@ pub(super) fn ring_slot_flags(tip: u32, wart: u32, irregular: u32, nn: u32) -> u
     (canonical as u8 * CANONICAL) | ((redundant | wart) as u8 * JUMPS)
 }
 
+/// What [`ring_slot_flags`] needs of a slot's tip, as two bits: `v.n.n` (bit 0), not `NULL`
+/// (bit 1). Apart, so that a pass can find them in 32-bit lanes and the flags in bytes.
+#[derive(Clone, Copy)]
+pub(super) struct TipIs(pub u8);
+
+impl TipIs {
+    #[inline(always)]
+    pub(super) fn of(tip: u32, nn: u32) -> TipIs {
+        TipIs((tip == nn) as u8 | ((tip != NULL) as u8) << 1)
+    }
+}
+
+/// [`ring_slot_flags`] in byte lanes, from what the tip is and the WART and IRREGULAR flags
+/// (0 or 1). (The passes in 32-bit lanes keep `ring_slot_flags`: through bytes they took more
+/// instructions.)
+#[inline(always)]
+pub(super) fn slot_flags(tip: TipIs, wart: u8, irregular: u8) -> u8 {
+    let (next_next, not_null) = (tip.0 & 1, tip.0 >> 1);
+    let redundant = (1 ^ wart) & (1 ^ irregular) & next_next;
+    let canonical = irregular | (not_null & (1 ^ redundant));
+    (canonical * CANONICAL) | ((redundant | wart) * JUMPS)
+}
+
 /// `v.n.n` for ring vertex `v` when the ring is the only one, of `m_r` vertices: `v + 2`,
 /// wrapped without a branch (the passes over every slot stay vectorizable).
 #[inline(always)]
@@ -342,5 +365,27 @@ impl Iterator for BitsSet {
             self.0 &= self.0 - 1;
             i
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The byte-lane flags are the 32-bit ones, for every kind of tip and flag.
+    #[test]
+    fn slot_flags_in_bytes_are_ring_slot_flags() {
+        let nn = 7;
+        for tip in [nn, NULL, 3, 0] {
+            for wart in 0..2 {
+                for irregular in 0..2 {
+                    assert_eq!(
+                        slot_flags(TipIs::of(tip, nn), wart as u8, irregular as u8),
+                        ring_slot_flags(tip, wart, irregular, nn),
+                        "tip {tip}, wart {wart}, irregular {irregular}"
+                    );
+                }
+            }
+        }
     }
 }
