@@ -100,24 +100,12 @@ pub(super) fn ring_slot_flags(tip: u32, wart: u32, irregular: u32, nn: u32) -> u
     (canonical as u8 * CANONICAL) | ((redundant | wart) as u8 * JUMPS)
 }
 
-/// What [`ring_slot_flags`] needs of a slot's tip, as two bits: `v.n.n` (bit 0), not `NULL`
-/// (bit 1). Apart, so that a pass can find them in 32-bit lanes and the flags in bytes.
-#[derive(Clone, Copy)]
-pub(super) struct TipIs(pub u8);
-
-impl TipIs {
-    #[inline(always)]
-    pub(super) fn of(tip: u32, nn: u32) -> TipIs {
-        TipIs((tip == nn) as u8 | ((tip != NULL) as u8) << 1)
-    }
-}
-
-/// [`ring_slot_flags`] in byte lanes, from what the tip is and the WART and IRREGULAR flags
-/// (0 or 1). (The passes in 32-bit lanes keep `ring_slot_flags`: through bytes they took more
-/// instructions.)
+/// [`ring_slot_flags`] in byte lanes, from whether the tip is `v.n.n` and whether it is not
+/// `NULL`, and the WART and IRREGULAR flags (each 0 or 1), so that a pass can find what the
+/// tips are in 32-bit lanes and the flags in bytes. (The passes in 32-bit lanes keep
+/// `ring_slot_flags`: through bytes they took more instructions.)
 #[inline(always)]
-pub(super) fn slot_flags(tip: TipIs, wart: u8, irregular: u8) -> u8 {
-    let (next_next, not_null) = (tip.0 & 1, tip.0 >> 1);
+pub(super) fn slot_flags(next_next: u8, not_null: u8, wart: u8, irregular: u8) -> u8 {
     let redundant = (1 ^ wart) & (1 ^ irregular) & next_next;
     let canonical = irregular | (not_null & (1 ^ redundant));
     (canonical * CANONICAL) | ((redundant | wart) * JUMPS)
@@ -380,7 +368,12 @@ mod tests {
             for wart in 0..2 {
                 for irregular in 0..2 {
                     assert_eq!(
-                        slot_flags(TipIs::of(tip, nn), wart as u8, irregular as u8),
+                        slot_flags(
+                            (tip == nn) as u8,
+                            (tip != NULL) as u8,
+                            wart as u8,
+                            irregular as u8
+                        ),
                         ring_slot_flags(tip, wart, irregular, nn),
                         "tip {tip}, wart {wart}, irregular {irregular}"
                     );

@@ -5,12 +5,12 @@
 //! the rest of the pass). It only says whether the rule holds: when it does not, the
 //! reader's slot-by-slot loop (`check_slots`) finds the first fault and names it.
 
-use super::lr_rules::{slot_flags, BitsSet, TipIs};
+use super::lr_rules::{slot_flags, BitsSet};
 use crate::lr::zipper::{
     Slot, BLOCK_SHIFT, DELTAS, EXCEPTION, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PREVIOUS,
     RECORD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
 };
-use crate::lr::{LrLayout, ZipperTables, NULL, VALUE, WART};
+use crate::lr::{LrLayout, ZipperTables, VALUE, WART};
 use crate::words::{LeWords, Words};
 
 type Tables<'a> = ZipperTables<LeWords<'a>>;
@@ -87,11 +87,10 @@ fn words_hold(t: &Tables, m: u32, exceptions: &[u32], records: &[u32]) -> bool {
         && 2 * pairs == t.pairs.count()
 }
 
-/// What the slots of one block need of the ring: for each slot, `v.p`, `v.n.n` and the
-/// symbol on its side of `v.n`. Arithmetic (`v - 1`, `v + 2`, the slot two bits on) except
+/// What the slots of one block need of the ring: for each slot, `v.n.n` and the symbol on its
+/// side of `v.n`. Arithmetic (`v + 2`, the slot two bits on) except
 /// at the block's last vertex and next to a ring's end, found from the ring-end bits.
 struct Neighbours {
-    prev: [u32; 128],
     nn: [u32; 128],
     next_symbols: [u8; 128],
 }
@@ -99,7 +98,6 @@ struct Neighbours {
 impl Neighbours {
     fn of_block(t: &Tables, first: u32, used: usize, symbols: &[u8; 128]) -> Neighbours {
         let mut n = Neighbours {
-            prev: std::array::from_fn(|bit| (first + bit as u32 / 2).wrapping_sub(1)),
             nn: std::array::from_fn(|bit| first + bit as u32 / 2 + 2),
             next_symbols: [0; 128],
         };
@@ -114,7 +112,6 @@ impl Neighbours {
             let next = t.ring_next(v);
             for side in 0..2 {
                 let bit = 2 * k as usize + side;
-                n.prev[bit] = t.ring_prev(v);
                 n.nn[bit] = t.ring_next(next);
                 n.next_symbols[bit] = if next == v + 1 && bit + 2 < used {
                     symbols[bit + 2]
@@ -205,10 +202,12 @@ pub(super) fn scan_slots(t: &Tables) -> Option<Vec<u8>> {
         }
         // Every slot's tip, range and flags, without a branch, over the whole block (slots
         // past the last ring vertex have symbol 0 and tip 0), in three loops that vectorize:
-        // what the symbols say in byte lanes, the tips in 32-bit lanes, the flags in bytes.
+        // what the symbols say in byte lanes, the chained tips in 32-bit lanes, the flags in
+        // bytes. Only chained tips need the 32-bit lanes: a ring rule's tip is `v.p` (a
+        // vertex, never `v.n.n` on a ring of 4 or more, V16), `v.n.n` or `NULL`.
         let n = Neighbours::of_block(t, first, used, &symbols);
         let mut from_chain = [0u8; 128];
-        let mut from_prev = [0u8; 128];
+        let mut next_next = [0u8; 128];
         let mut null = [0u8; 128];
         let mut wart = [0u8; 128];
         let mut irregular = [0u8; 128];
@@ -217,28 +216,25 @@ pub(super) fn scan_slots(t: &Tables) -> Option<Vec<u8>> {
             let before_t2 = wart_deltas & (n.next_symbols[bit] == PREVIOUS as u8) as u8;
             let delta = (s < DELTAS as u8) as u8;
             let stored = (s >= EXCEPTION as u8) as u8;
+            let rule_5 = (s == NEXT_NEXT_OR_NULL as u8) as u8;
             from_chain[bit] = delta | stored;
-            from_prev[bit] = (s == PREVIOUS as u8) as u8;
-            null[bit] = (s == NEXT_NEXT_OR_NULL as u8) as u8 & (bit as u8 & 1) & (1 ^ before_t2);
+            null[bit] = rule_5 & (bit as u8 & 1) & (1 ^ before_t2);
+            next_next[bit] = rule_5 & (1 ^ null[bit]);
             // `stored_wart` is 0 but at stored slots.
             wart[bit] = (delta & before_t2) | stored_wart[bit];
             irregular[bit] = (s == IRREGULAR_SLOT as u8) as u8;
         }
         let mut block_bad = 0u32;
-        let mut tip_is = [0u8; 128];
+        let mut chained_next_next = [0u8; 128];
         for bit in 0..128 {
-            let ring_tip = select(
-                from_prev[bit] != 0,
-                n.prev[bit],
-                select(null[bit] != 0, NULL, n.nn[bit]),
-            );
-            let tip = select(from_chain[bit] != 0, chained[bit], ring_tip);
-            block_bad |= (tip >= m) as u32 & (1 ^ null[bit] as u32);
-            tip_is[bit] = TipIs::of(tip, n.nn[bit]).0;
+            block_bad |= (chained[bit] >= m) as u32 & from_chain[bit] as u32;
+            chained_next_next[bit] = (chained[bit] == n.nn[bit]) as u8;
         }
         let mut all_flags = [0u8; 128];
         for bit in 0..128 {
-            all_flags[bit] = slot_flags(TipIs(tip_is[bit]), wart[bit], irregular[bit]);
+            // A chained tip in range is neither NULL nor, when it fails, used.
+            let is_next_next = (from_chain[bit] & chained_next_next[bit]) | next_next[bit];
+            all_flags[bit] = slot_flags(is_next_next, 1 ^ null[bit], wart[bit], irregular[bit]);
         }
         block_flags.copy_from_slice(&all_flags[..used]);
         bad |= block_bad != 0;
