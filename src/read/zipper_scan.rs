@@ -44,11 +44,23 @@ pub(super) fn block_symbols(slot: &Slot) -> [u8; 128] {
     symbols
 }
 
-/// `a` if `choose`, else `b`, computing both (a select, not a branch).
-#[inline(always)]
-fn select(choose: bool, a: u32, b: u32) -> u32 {
-    let mask = (choose as u32).wrapping_neg();
-    (a & mask) | (b & !mask)
+/// The bits of a block's slots (slot `2i + side`) that are on the left side.
+const LEFT_SLOTS: u128 = 0x5555_5555_5555_5555_5555_5555_5555_5555;
+
+/// The set bits of a `u128`, lowest first.
+struct Bits128(u128);
+
+impl Iterator for Bits128 {
+    type Item = usize;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<usize> {
+        (self.0 != 0).then(|| {
+            let bit = self.0.trailing_zeros() as usize;
+            self.0 &= self.0 - 1;
+            bit
+        })
+    }
 }
 
 /// Whether an exception word or a record's first word holds only a WART flag and a vertex
@@ -172,33 +184,39 @@ pub(super) fn scan_slots(t: &Tables) -> Option<Vec<u8>> {
         bad |= slot.p.iter().any(|p| p & beyond != 0);
         let symbols = block_symbols(&slot);
         // The chains: each side's tip decremented by its delta symbols and set by its
-        // exception and irregular slots (a few in a hundred: a branch).
+        // exception and irregular slots (a few in a hundred). First the stored words, in
+        // slot order (a list's words are used in that order), then each side's chain in
+        // runs between its stored slots, without a branch per slot.
+        let stored = slot.p[1] & slot.p[2];
         let mut chained = [0u32; 128];
         let mut stored_wart = [0u8; 128];
-        let mut step = |chain: u32, bit: usize| {
-            let s = symbols[bit] as u32;
-            let chain = if s >= EXCEPTION {
-                let word = if s == EXCEPTION {
-                    exceptions += 1;
-                    exception(exceptions - 1)
-                } else {
-                    records += 1;
-                    record(records - 1)
-                };
-                stored_wart[bit] = (word & WART != 0) as u8;
-                word & VALUE
+        for bit in Bits128(stored) {
+            let word = if symbols[bit] as u32 == EXCEPTION {
+                exceptions += 1;
+                exception(exceptions - 1)
             } else {
-                chain.wrapping_sub(select(s < DELTAS, s, 0))
+                records += 1;
+                record(records - 1)
             };
-            chained[bit] = chain;
-            chain
-        };
-        // The two sides' chains in locals, not an array indexed by side (which kept them in
-        // memory, a store and a load on every slot's path).
-        let (mut left, mut right) = (t.chain_head(block, 0), t.chain_head(block, 1));
-        for bit in (0..used).step_by(2) {
-            left = step(left, bit);
-            right = step(right, bit + 1);
+            stored_wart[bit] = (word & WART != 0) as u8;
+            chained[bit] = word & VALUE;
+        }
+        let deltas = symbols.map(|s| if (s as u32) < DELTAS { s } else { 0 });
+        for side in 0..2 {
+            let mut chain = t.chain_head(block, side);
+            let mut bit = side;
+            let resets = Bits128(stored & LEFT_SLOTS << side);
+            for end in resets.chain(std::iter::once(used)) {
+                while bit < end {
+                    chain = chain.wrapping_sub(deltas[bit] as u32);
+                    chained[bit] = chain;
+                    bit += 2;
+                }
+                if let Some(&value) = chained.get(end) {
+                    chain = value;
+                }
+                bit = end + 2;
+            }
         }
         // Every slot's tip, range and flags, without a branch, over the whole block (slots
         // past the last ring vertex have symbol 0 and tip 0), in three loops that vectorize:
