@@ -273,3 +273,92 @@ mod tests {
         crate::read::read_forged_files(0b101, 58, 1500);
     }
 }
+
+#[cfg(test)]
+mod multi_block_tests {
+    use crate::format::Tag;
+    use crate::generate::{self, Rng};
+    use crate::lr::zipper::{BLOCK_SHIFT, SHORT_HEAD_WORDS};
+    use crate::read::{open, Limits};
+    use crate::write::{assemble, encode, Connectivity, EncodeOptions, SectionBytes};
+
+    /// A Zipper file of 30 blocks with holes and defects (the forged files of the fuzz
+    /// targets have one block): its sections, and the index of `ZIPR`.
+    fn base(rng: &mut Rng) -> (Vec<SectionBytes>, usize) {
+        let mut mesh = generate::torus(48, 40);
+        generate::punch_holes(&mut mesh, 4, rng);
+        generate::add_defects(&mut mesh, 4, rng);
+        let options = EncodeOptions {
+            connectivity: Connectivity::Zipper,
+            ..EncodeOptions::default()
+        };
+        let bytes = encode(&mesh, &options).expect("a generated mesh encodes");
+        let sections: Vec<_> = open(&bytes, &Limits::default())
+            .expect("what we write opens")
+            .sections
+            .sections
+            .iter()
+            .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
+            .collect();
+        let z = sections
+            .iter()
+            .position(|s| s.0 == Tag::ZIPR)
+            .expect("a ZIPR section");
+        (sections, z)
+    }
+
+    /// Units of `ZIPR` copied over others: under `cfg(test)` `open` runs this fast pass and
+    /// the slot loop on each file and asserts that their flags agree. Copied units keep most
+    /// fields plausible, so both verdicts occur.
+    #[test]
+    fn the_fast_pass_and_the_slot_loop_agree_on_forged_multi_block_files() {
+        let mut rng = Rng::new(24);
+        let (base, z) = base(&mut rng);
+        let units = base[z].2.len() as u32 / 2;
+        let (mut opened, mut refused) = (0, 0);
+        for _ in 0..3000 {
+            let mut sections = base.clone();
+            let section = &mut sections[z].2;
+            for _ in 0..1 + rng.below(4) {
+                let (from, to) = (rng.below(units) as usize, rng.below(units) as usize);
+                let unit = [section[2 * from], section[2 * from + 1]];
+                section[2 * to..2 * to + 2].copy_from_slice(&unit);
+            }
+            match open(&assemble(&sections), &Limits::default()) {
+                Ok(_) => opened += 1,
+                Err(_) => refused += 1,
+            }
+        }
+        assert!(
+            opened > 0 && refused > 0,
+            "{opened} opened, {refused} refused"
+        );
+    }
+
+    /// Every block's anchors set in turn to `m + d` (`d` 0 to 3), so that a first delta
+    /// slot of symbol `d` chains to `m` exactly, one past the last vertex: the edge of
+    /// [V58]'s range, which random copies rarely reach. The two passes must agree there too.
+    #[test]
+    fn the_fast_pass_and_the_slot_loop_agree_at_the_edge_of_the_range() {
+        let (base, z) = base(&mut Rng::new(25));
+        let bytes = assemble(&base);
+        let view = open(&bytes, &Limits::default()).expect("what we write opens");
+        let t = view.zipper().expect("Zipper tables");
+        assert!(t.short_heads(), "the writer's heads are short");
+        let section = view.sections.sections[z].bytes;
+        let heads_at = t.heads.0.as_ptr() as usize - section.as_ptr() as usize;
+        let (m, blocks) = (t.m, t.m_r.div_ceil(1 << BLOCK_SHIFT));
+        let mut refused = 0;
+        for block in 0..blocks {
+            let first = block << BLOCK_SHIFT;
+            for (side, d) in (0..2).flat_map(|side| (0..4).map(move |d| (side, d))) {
+                let anchor_offset = (m + d - first) as i16;
+                let at = heads_at + 4 * SHORT_HEAD_WORDS * block as usize + 2 * side;
+                let mut sections = base.clone();
+                sections[z].2[at..at + 2].copy_from_slice(&anchor_offset.to_le_bytes());
+                refused += open(&assemble(&sections), &Limits::default()).is_err() as usize;
+            }
+        }
+        assert!(refused > 0, "no chain reached m");
+    }
+}
