@@ -83,7 +83,11 @@ fn run(cli: Cli) -> lrmesh::Result<()> {
 /// which such blocks come from the heap and stay resident once freed. The encoder frees its
 /// large arrays phase by phase (corner table, rings, working arrays): with the threshold fixed
 /// at glibc's default of 128 KiB they go back to the system at once, which takes 5-7% off an
-/// encode's peak resident memory at 3.3M triangles.
+/// encode's peak resident memory at 3.3M triangles. Not for `bench`: there every timed run
+/// would get fresh pages for its large blocks, faulted and zeroed again (an `open`'s
+/// validation buffers, 2 bytes per ring vertex: 1.3-1.5 ms of a 5 ms open at 3.3M
+/// triangles), which a program that opens or builds more than once does not pay, nor the
+/// memcpy the opens are compared with, whose buffer is allocated once.
 #[cfg(target_os = "linux")]
 #[global_allocator]
 static ALLOCATOR: huge::HugePages = huge::HugePages;
@@ -100,8 +104,11 @@ fn return_large_blocks_at_once() {
 fn return_large_blocks_at_once() {}
 
 fn main() -> ExitCode {
-    return_large_blocks_at_once();
-    match run(Cli::parse()) {
+    let cli = Cli::parse();
+    if !matches!(cli.command, Command::Bench(_)) {
+        return_large_blocks_at_once();
+    }
+    match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e}");
