@@ -7,7 +7,7 @@
 
 use super::lr_rules::{slot_flags, BitsSet};
 use crate::lr::zipper::{
-    Slot, BLOCK_SHIFT, DELTAS, EXCEPTION, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PREVIOUS,
+    Slot, BLOCK_SHIFT, DELTAS, EXCEPTION, IRREGULAR_SLOT, LEFT_SLOTS, NEXT_NEXT_OR_NULL, PREVIOUS,
     RECORD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
 };
 use crate::lr::{LrLayout, ZipperTables, VALUE, WART};
@@ -43,9 +43,6 @@ pub(super) fn block_symbols(slot: &Slot) -> [u8; 128] {
     }
     symbols
 }
-
-/// The bits of a block's slots (slot `2i + side`) that are on the left side.
-const LEFT_SLOTS: u128 = 0x5555_5555_5555_5555_5555_5555_5555_5555;
 
 /// The set bits of a `u128`, lowest first.
 struct Bits128(u128);
@@ -187,7 +184,7 @@ pub(super) fn scan_slots(t: &Tables) -> Option<Vec<u8>> {
         // exception and irregular slots (a few in a hundred). First the stored words, in
         // slot order (a list's words are used in that order), then each side's chain in
         // runs between its stored slots, without a branch per slot.
-        let stored = slot.p[1] & slot.p[2];
+        let stored = slot.stored();
         let mut chained = [0u32; 128];
         let mut stored_wart = [0u8; 128];
         for bit in Bits128(stored) {
@@ -233,9 +230,9 @@ pub(super) fn scan_slots(t: &Tables) -> Option<Vec<u8>> {
             let s = symbols[bit];
             let before_t2 = wart_deltas & (n.next_symbols[bit] == PREVIOUS as u8) as u8;
             let delta = (s < DELTAS as u8) as u8;
-            let stored = (s >= EXCEPTION as u8) as u8;
+            let is_stored = (s >= EXCEPTION as u8) as u8;
             let rule_5 = (s == NEXT_NEXT_OR_NULL as u8) as u8;
-            from_chain[bit] = delta | stored;
+            from_chain[bit] = delta | is_stored;
             null[bit] = rule_5 & (bit as u8 & 1) & (1 ^ before_t2);
             next_next[bit] = rule_5 & (1 ^ null[bit]);
             // `stored_wart` is 0 but at stored slots.

@@ -41,6 +41,7 @@ mod tables;
 
 pub use packed::{first_bit, list_fields, packed_words, Field, FieldKind, Packed};
 pub(crate) use tables::Slot;
+pub(crate) use tables::LEFT_SLOTS;
 pub use tables::{plane_array_words, ZipperTables};
 
 use super::{Lr, LrCounts, LrOptions};

@@ -13,7 +13,7 @@ use crate::lr::tables::{LrLayout, LEFT, NULL, VALUE, WART};
 use crate::words::Words;
 
 /// The bits of the left slots of a block (slot `2i + side`).
-const LEFT_SLOTS: u128 = 0x5555_5555_5555_5555_5555_5555_5555_5555;
+pub(crate) const LEFT_SLOTS: u128 = 0x5555_5555_5555_5555_5555_5555_5555_5555;
 
 /// The Zipper tables over words `W` (vectors after construction, little-endian bytes in a
 /// container).
@@ -92,6 +92,12 @@ impl Slot {
     #[inline]
     pub fn irregular(&self) -> u128 {
         self.p[0] & self.p[1] & self.p[2]
+    }
+
+    /// The block's slots whose word is stored: exception and irregular slots.
+    #[inline]
+    pub fn stored(&self) -> u128 {
+        self.p[1] & self.p[2]
     }
 }
 
@@ -221,7 +227,7 @@ impl<W: Words> ZipperTables<W> {
     fn chain(&self, slot: &Slot) -> u32 {
         let side = (slot.bit & 1) as usize;
         let same = (LEFT_SLOTS << side) & up_to(slot.bit);
-        let resets = slot.p[1] & slot.p[2] & same;
+        let resets = slot.stored() & same;
         let (base, range) = if resets == 0 {
             (self.chain_head(slot.block, side), same)
         } else {
