@@ -53,6 +53,7 @@ fn view_equals_owned_tables_and_corner_table() {
         let compact_options = CompactOptions {
             lr: options().lr,
             periods: options().periods,
+            tip_bases: options().tip_bases,
         };
         let owned = CompactLr::build(&table, &compact_options).unwrap();
         assert!(bytes.len() as u64 > owned.stored_bytes());

@@ -9,7 +9,7 @@ use common::forge::*;
 use lrmesh::format::layout::LrbeHeader;
 use lrmesh::format::Tag;
 use lrmesh::lr::LrLayout;
-use lrmesh::read::{open, Limits};
+use lrmesh::read::{open, open_verified, Limits};
 use lrmesh::{Corner, CornerOps};
 
 // ---------------------------------------------------------------------------------------
@@ -22,7 +22,9 @@ fn v33_lrbe_counts() {
     let at = section_at(&bytes, Tag::LRBE);
     let field = |f: usize, x: u32| forge(&bytes, Tag::LRBE, |p| put(p, f, x));
     breaks(&field(0, 24), 33, "LRBE", at, "section MESH says 25");
-    breaks(&field(28, 2), 33, "LRBE", at + 28, "unknown flag bits");
+    breaks(&field(28, 4), 33, "LRBE", at + 28, "unknown flag bits");
+    // TIP_BASES calls for the BASES array, which the file lacks.
+    breaks(&field(28, 2), 33, "LRBE", at, "counts call for");
     for m_r in [26, 0, 3] {
         breaks(&field(4, m_r), 33, "LRBE", at + 4, "ring vertices");
     }
@@ -346,4 +348,94 @@ fn v37_lrbe_corners_and_lr_rules() {
         &format!("corner {partner} and its opposite {k}"),
     );
     // [V38] on LRBE: in v38_vertex_corner_starts_its_fan.
+}
+
+/// [V33] and [V35] with `TIP_BASES` (version 1.11), on the vector with both kinds of field:
+/// the `BASES` array's length; a far tip out of range, or adding up to `NULL`'s value, by its
+/// base or its field (the fault named at the pair, with the base); a near field read with
+/// its 14 bits; any base valid while its tips stay in range.
+#[test]
+fn v33_v35_tip_bases() {
+    let bytes = vector("torus_with_t0.lr-compact-bases.lrm"); // m = m_r = 25: one block
+    open(&bytes, &Limits::default()).unwrap();
+    let at = section_at(&bytes, Tag::LRBE);
+    let p = payload(&bytes, Tag::LRBE);
+    // BASES holds two words per block of 256 ring vertices.
+    for edit in [
+        |t: &mut Tables| t.array(BASES).push(0),
+        |t: &mut Tables| {
+            t.array(BASES).pop();
+        },
+    ] {
+        let mut t = Tables::lrbe(&p);
+        edit(&mut t);
+        let bad = forge(&bytes, Tag::LRBE, |p| *p = t.join());
+        breaks(&bad, 33, "LRBE", at, "counts call for");
+    }
+    let pair = |v: usize| get(&p, lrbe_word(&p, PAIRS, v));
+    let far = |v: usize, side: usize| pair(v) >> 30 != 3 && pair(v) >> (15 * side) & 0x4000 != 0;
+    let v = (0..25).find(|&v| far(v, 0)).expect("a far left field");
+    let base = get(&p, lrbe_word(&p, BASES, 0)) as i32;
+    // The left base moved so that v's far tip leaves 0..25 (other far tips may fail first,
+    // at their own pair: the first far left one is v).
+    for moved in [base + 25, base - 25, i32::MAX, i32::MIN] {
+        let bad = forge(&bytes, Tag::LRBE, |p| set_lrbe(p, BASES, 0, moved as u32));
+        breaks(
+            &bad,
+            35,
+            "LRBE",
+            lrbe_at(&bytes, "PAIRS", v),
+            &format!("from block 0's base {moved}"),
+        );
+    }
+    // A far field whose tip adds up to NULL's value, on the right: not NULL, out of range.
+    let w = (0..25).find(|&w| far(w, 1)).expect("a far right field");
+    let e = ((pair(w) >> 15 & 0x3FFF) << 18) as i32 >> 18;
+    let null_base = (u32::MAX.wrapping_sub(w as u32) as i32).wrapping_sub(e);
+    let bad = forge(&bytes, Tag::LRBE, |p| {
+        set_lrbe(p, BASES, 1, null_base as u32)
+    });
+    let first_right = (0..25).find(|&u| far(u, 1)).unwrap();
+    breaks(
+        &bad,
+        35,
+        "LRBE",
+        lrbe_at(&bytes, "PAIRS", first_right),
+        "has tip",
+    );
+    // A near field holds 14 bits: 0x2000 is -8192, out of range at any v below 8192.
+    let u = (0..25).find(|&u| pair(u) >> 30 != 3 && !far(u, 0)).unwrap();
+    let bad = forge(&bytes, Tag::LRBE, |p| {
+        set_lrbe(p, PAIRS, u, pair(u) & !0x7FFF | 0x2000)
+    });
+    breaks(&bad, 35, "LRBE", lrbe_at(&bytes, "PAIRS", u), "has tip");
+    // A base that leaves every far tip in range (here: far fields rewritten near) is valid.
+    let mut t = Tables::lrbe(&p);
+    for (x, word) in t.array(PAIRS).iter_mut().enumerate() {
+        if *word >> 30 == 3 {
+            continue;
+        }
+        for side in 0..2 {
+            let f = *word >> (15 * side) & 0x7FFF;
+            if f & 0x4000 != 0 {
+                let e = ((f & 0x3FFF) << 18) as i32 >> 18;
+                let d = get(&p, lrbe_word(&p, BASES, side)) as i32 + e;
+                assert!(d != 0 && (-8192..8192).contains(&d), "pair {x}");
+                *word = *word & !(0x7FFF << (15 * side)) | (d as u32 & 0x3FFF) << (15 * side);
+            }
+        }
+    }
+    *t.array(BASES) = vec![0x8000_0000, 12345];
+    let same = forge(&bytes, Tag::LRBE, |p| *p = t.join());
+    let (a, b) = (
+        open_verified(&same, &Limits::default()).unwrap(),
+        open_verified(&bytes, &Limits::default()).unwrap(),
+    );
+    let corners = |c: &lrmesh::read::Container| {
+        let conn = c.connectivity();
+        conn.corners()
+            .map(|k| (k, conn.vertex(k), conn.opposite(k)))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(corners(&a), corners(&b));
 }

@@ -34,6 +34,7 @@ fn options(periods: &[u32]) -> CompactOptions {
     CompactOptions {
         lr: LrOptions::default(),
         periods: periods.to_vec(),
+        ..CompactOptions::default()
     }
 }
 
@@ -53,31 +54,61 @@ fn torus_and_small_cases() {
 
 /// A large irregular mesh built depth first has offsets beyond 15 bits, T0 rows that
 /// overflow, and many blocks: every long path of the layout is exercised.
+/// A depth-first ring on a large mesh: tips tens of thousands of vertices away. Without tip
+/// bases they are long references in records; with them, far fields of plain pairs (both
+/// checked corner by corner against the corner table).
 #[test]
-fn long_references_and_overflow_rows() {
+fn long_references_far_fields_and_overflow_rows() {
     let mut rng = Rng::new(7);
     let mut mesh = generate::irregular_torus(120_000, 5);
     generate::punch_holes(&mut mesh, 30, &mut rng);
-    let lr = check_compact(&mesh, &options(&[0]));
+    let with = |tip_bases| CompactOptions {
+        tip_bases: Some(tip_bases),
+        ..options(&[0])
+    };
+    let lr = check_compact(&mesh, &with(false));
     let t = lr.tables();
     let stats = lr.stats();
     eprintln!("{stats:?}");
-    let long_tips = (0..t.ring_vertices())
-        .filter(|&v| {
-            [0, 1].iter().any(|&side| {
-                let tip = t.tip(v, side);
-                tip != lrmesh::lr::NULL && (tip as i64 - v as i64).abs() > 0x3FFF
-            })
+    let far_tip = |v: u32| {
+        [0, 1].iter().any(|&side| {
+            let tip = t.tip(v, side);
+            tip != lrmesh::lr::NULL && (tip as i64 - v as i64).abs() > 0x3FFF
         })
-        .count();
+    };
+    let long_tips = (0..t.ring_vertices()).filter(|&v| far_tip(v)).count();
     assert!(long_tips > 0, "no long tip exercised");
+    assert!(!t.has_tip_bases());
     assert!(t.overflow_rows() > 0, "no T0 overflow row exercised");
     assert!((0..t.ring_vertices()).any(|v| t.is_extended(v)));
     assert!(t.ring_vertices() > 4 << lrmesh::lr::compact::BLOCK_SHIFT);
     // The hybrid expander keeps offsets short on the same mesh.
-    let hybrid = check_compact(&mesh, &options(&[64]));
+    let hybrid = check_compact(
+        &mesh,
+        &CompactOptions {
+            tip_bases: Some(false),
+            ..options(&[64])
+        },
+    );
     eprintln!("{:?}", hybrid.stats());
     assert!(hybrid.stats().bpt < stats.bpt);
+    // Tip bases: the far tips in plain pairs, far fewer records, a smaller section; and
+    // chosen by default.
+    let based = check_compact(&mesh, &with(true));
+    let b = based.tables();
+    eprintln!("{:?}", based.stats());
+    assert!(b.has_tip_bases());
+    let far_plain = (0..b.ring_vertices())
+        .filter(|&v| !b.is_extended(v) && far_tip(v))
+        .count();
+    assert!(
+        far_plain > long_tips / 2,
+        "{far_plain} far tips in plain pairs"
+    );
+    assert!(based.stats().tl_pct < stats.tl_pct / 2.0);
+    assert!(based.stored_bytes() < lr.stored_bytes());
+    let chosen = CompactLr::build(&CornerTable::from_mesh(&mesh).unwrap(), &options(&[0])).unwrap();
+    assert_eq!(chosen.stored_bytes(), based.stored_bytes());
 }
 
 /// Every slot of the compact tables holds what the standard tables of the same ring hold.
@@ -180,9 +211,9 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(200))]
 
     #[test]
-    fn soups(vertices in 1u32..25, triangles in 0u32..60, seed in any::<u64>(), period in 0u32..4) {
+    fn soups(vertices in 1u32..25, triangles in 0u32..60, seed in any::<u64>(), period in 0u32..4, bases in any::<bool>()) {
         let mesh = generate::soup(vertices, triangles, &mut Rng::new(seed));
-        check_compact(&mesh, &CompactOptions { lr: LrOptions { tries: 2, seed, ..LrOptions::default() }, periods: vec![period] });
+        check_compact(&mesh, &CompactOptions { lr: LrOptions { tries: 2, seed, ..LrOptions::default() }, periods: vec![period], tip_bases: bases.then_some(true) });
     }
 
     #[test]
@@ -190,6 +221,6 @@ proptest! {
                             defects in 0usize..10, handles in 0usize..3, seed in any::<u64>(),
                             period in 0u32..6) {
         let mesh = torus_with_everything(around, along, holes, defects, handles, seed);
-        check_compact(&mesh, &CompactOptions { lr: LrOptions { tries: 2, seed, ..LrOptions::default() }, periods: vec![period] });
+        check_compact(&mesh, &CompactOptions { lr: LrOptions { tries: 2, seed, ..LrOptions::default() }, periods: vec![period], ..CompactOptions::default() });
     }
 }

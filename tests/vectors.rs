@@ -503,3 +503,110 @@ fn zipper_files_of_versions_1_7_to_1_9_read_the_same() {
         }
     }
 }
+
+/// `NAME.lr-compact-bases.lrm`, for `torus_with_t0` and `genus3_torus`: `NAME.lr-compact.lrm`
+/// with its plain pairs rewritten under the `LRBE` flag `TIP_BASES` (FORMAT.md §3.5d, version
+/// 1.11), as spec/vectors/README.md says: each block's base of a side is the lower median of
+/// its plain pairs' offsets `tip − v` on that side (`NULL` tips left out; 0 when there are
+/// none), and each tip is written from the base when that offset is smaller in magnitude,
+/// from `v` otherwise. The writer sets the flag only when it saves bytes, which it never
+/// does on a small mesh: this keeps files with both kinds of field.
+fn with_tip_bases(bytes: &[u8]) -> Vec<u8> {
+    use common::forge::{forge, Tables, BASES, PAIRS};
+    use lrmesh::format::layout::LRBE_TIP_BASES;
+    use lrmesh::lr::compact::plain::{short15, FAR, NEAR_MAX, NEAR_MIN};
+    forge(bytes, lrmesh::format::Tag::LRBE, |p| {
+        let mut t = Tables::lrbe(p);
+        t.head[7] |= LRBE_TIP_BASES;
+        let pairs = t.array(PAIRS).clone();
+        let plain = |word: u32| word >> 30 != 3;
+        let mut bases = Vec::new();
+        for block in pairs.chunks(256) {
+            for side in 0..2 {
+                let mut offsets: Vec<i32> = block
+                    .iter()
+                    .filter(|&&word| plain(word))
+                    .map(|word| short15(word >> (15 * side)))
+                    .filter(|&d| d != 0)
+                    .collect();
+                offsets.sort_unstable();
+                bases.push(
+                    offsets
+                        .get(offsets.len().saturating_sub(1) / 2)
+                        .map_or(0, |&d| d),
+                );
+            }
+        }
+        for (v, word) in t.array(PAIRS).iter_mut().enumerate() {
+            if !plain(*word) {
+                continue;
+            }
+            let mut fields = [0u32; 2];
+            for (side, field) in fields.iter_mut().enumerate() {
+                let d = short15(*word >> (15 * side)) as i64;
+                let e = d - bases[2 * (v / 256) + side] as i64;
+                *field = if d == 0 {
+                    0
+                } else if e.abs() < d.abs() && (NEAR_MIN..=NEAR_MAX).contains(&e) {
+                    FAR | e as u32 & 0x3FFF
+                } else {
+                    assert!((NEAR_MIN..=NEAR_MAX).contains(&d), "a small mesh's offset");
+                    d as u32 & 0x3FFF
+                };
+            }
+            *word = *word & 0xC000_0000 | fields[1] << 15 | fields[0];
+        }
+        *t.array(BASES) = bases.iter().map(|&b| b as u32).collect();
+        *p = t.join();
+    })
+}
+
+/// The files of [`with_tip_bases`]: the rewrite gives exactly the stored bytes (or rewrites
+/// them with `LRMESH_REGENERATE_VECTORS`), they have minor version 11, both kinds of field,
+/// open, verify, and give every corner's vertex and opposite as `NAME.lr-compact.txt` lists.
+#[test]
+fn lr_compact_files_with_tip_bases_read_the_same() {
+    let regenerate = std::env::var_os("LRMESH_REGENERATE_VECTORS").is_some();
+    for name in ["torus_with_t0", "genus3_torus"] {
+        let plain_file = std::fs::read(dir().join(format!("{name}.lr-compact.lrm"))).unwrap();
+        let ours = with_tip_bases(&plain_file);
+        let path = dir().join(format!("{name}.lr-compact-bases.lrm"));
+        if regenerate {
+            std::fs::write(&path, &ours).unwrap();
+        }
+        let stored = std::fs::read(&path).unwrap();
+        assert_eq!(ours, stored, "{name}: the rewrite gives the stored bytes");
+        assert_eq!(u16::from_le_bytes([stored[10], stored[11]]), 11, "{name}");
+        let view = open_verified(&stored, &Limits::default()).unwrap();
+        let View::LrCompact(t) = view.connectivity() else {
+            panic!("{name}: not lr-compact");
+        };
+        assert!(t.has_tip_bases(), "{name}");
+        let words = common::forge::Tables::lrbe(&common::forge::payload(
+            &stored,
+            lrmesh::format::Tag::LRBE,
+        ))
+        .array(common::forge::PAIRS)
+        .clone();
+        let fields: Vec<u32> = words
+            .iter()
+            .filter(|&&w| w >> 30 != 3)
+            .flat_map(|&w| [w & 0x7FFF, w >> 15 & 0x7FFF])
+            .filter(|&f| f != 0)
+            .collect();
+        let far = fields.iter().filter(|&&f| f & (1 << 14) != 0).count();
+        assert!(
+            far > 0 && far < fields.len(),
+            "{name}: {far} far fields of {}",
+            fields.len()
+        );
+        let corners = |s: &str| s.lines().skip(2).map(str::to_owned).collect::<Vec<_>>();
+        let expected =
+            std::fs::read_to_string(dir().join(format!("{name}.lr-compact.txt"))).unwrap();
+        assert_eq!(
+            corners(&listing(name, &stored)),
+            corners(&expected),
+            "{name}"
+        );
+    }
+}

@@ -279,7 +279,11 @@ impl LrtbHeader {
     }
 }
 
-/// `LRBE` (§3.5d): eight u32, eight u32 arrays, then two u16 arrays.
+/// `LRBE` flag (FORMAT.md §3.5d, version 1.11): plain pairs' tips are 14-bit offsets from the
+/// ring vertex or from it plus the base of their side in `BASES` (OPERATORS.md §7.1).
+pub const LRBE_TIP_BASES: u32 = 2;
+
+/// `LRBE` (§3.5d): eight u32, nine u32 arrays, then two u16 arrays.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct LrbeHeader {
     /// `m`: vertices.
@@ -296,15 +300,15 @@ pub struct LrbeHeader {
     pub overflow_rows: u32,
     /// The HYBRID-RING-EXPANDER period the writer used (informative).
     pub period: u32,
-    /// Flags: [`LR_BOUNDARIES_ON_RING`] or 0.
+    /// Flags: [`LR_BOUNDARIES_ON_RING`], [`LRBE_TIP_BASES`].
     pub flags: u32,
 }
 
 impl LrbeHeader {
     /// Bytes of the header.
     pub const LEN: usize = 32;
-    /// The arrays, in file order: eight of u32, then two of u16.
-    pub const ARRAYS: [&'static str; 10] = [
+    /// The arrays, in file order: nine of u32, then two of u16.
+    pub const ARRAYS: [&'static str; 11] = [
         "ring_starts",
         "ring_last",
         "ring_rank",
@@ -313,9 +317,15 @@ impl LrbeHeader {
         "GROUPS",
         "C",
         "OVERFLOW",
+        "BASES",
         "ROWS",
         "RECORDS",
     ];
+
+    /// Whether the `TIP_BASES` flag is set (the `BASES` array is present).
+    pub fn has_tip_bases(&self) -> bool {
+        self.flags & LRBE_TIP_BASES != 0
+    }
 
     /// The header at the start of `b` (at least [`LrbeHeader::LEN`] bytes).
     pub fn read(b: &[u8]) -> LrbeHeader {
@@ -372,6 +382,13 @@ impl LrbeHeader {
             ((self.t0 as u64).div_ceil(1 << GROUP_SHIFT), 4),
             ((self.m as u64).checked_sub(self.m_r as u64)?, 4),
             (OVERFLOW_ROW_WORDS as u64 * self.overflow_rows as u64, 4),
+            (
+                match self.has_tip_bases() {
+                    true => 2 * (self.m_r as u64).div_ceil(1 << BLOCK_SHIFT),
+                    false => 0,
+                },
+                4,
+            ),
             (T0_ROW_UNITS as u64 * self.t0 as u64, 2),
             (self.record_units as u64, 2),
         ];

@@ -201,7 +201,8 @@ fn base_sections(choice: u8) -> Vec<crate::write::SectionBytes> {
 
 /// The valid container [`container_forged`] starts from: bits 0–1 of `choice` the kind
 /// (LR, bit-efficient LR or with bit 2 set Zipper, strips, Edgebreaker), 2–3 the torus's size, 4 holes and defects and every fifth triangle reversed (the
-/// orientation repaired, section `FLIP`), 5 the input order kept, 6 positions and
+/// orientation repaired, section `FLIP`), 5 the input order kept (and for the bit-efficient
+/// LR, tip bases: `LRBE` flag `TIP_BASES`), 6 positions and
 /// attribute values quantized (predicted values in Edgebreaker; with bit 2 set, level 1:
 /// positions in `GEOM` encoding 6), 7 seams and parts (with JSON labels at level 0 on the
 /// smallest torus without holes, else coded).
@@ -234,6 +235,7 @@ pub fn forged_base(choice: u8) -> Vec<u8> {
             crate::write::Orient::AsGiven
         },
         keep_order: choice & 0x20 != 0,
+        tip_bases: (choice & 0x20 != 0).then_some(true),
         position_bits: (choice & 0x40 != 0).then_some(12),
         // Quantized attribute values (ATTR value encoding 1, or 2 in Edgebreaker) with the
         // quantized positions.

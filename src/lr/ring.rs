@@ -5,7 +5,7 @@
 //! so that the bit-efficient LR can compare periods without closing the mesh again.
 
 use super::closed::{next3, prev3, Closed};
-use super::compact::SHORT_MAX;
+use super::compact::{plain, BLOCK_SHIFT, SHORT_MAX};
 use super::leaf_moves::LeafMoves;
 use super::{LrOptions, NULL};
 use crate::corner_table::{CornerTable, NONE};
@@ -302,6 +302,8 @@ impl<'a> Prepared<'a> {
         let mut rings = Rings::new(mesh);
         let mut moves = exact.then(|| LeafMoves::new(mesh));
         let mut bytes = 0;
+        // Long pairs without and with tip bases, and the bytes of the bases.
+        let (mut long, mut bases) = ([0u64; 2], 0u64);
         for comp in &self.components {
             let t0 = match moves.as_mut() {
                 Some(moves) => {
@@ -313,18 +315,31 @@ impl<'a> Prepared<'a> {
                 None => expansion.best_of(comp, 1),
             };
             bytes += T0_BYTES * t0 as u64;
-            if comp.vertices.len() as i64 > SHORT_MAX {
+            if comp.vertices.len() as i64 > plain::NEAR_MAX {
                 let first = rings.ring_corner.len();
-                rings.walk(mesh, comp, &expansion.main.tm);
-                bytes += LONG_PAIR_BYTES * rings.long_pairs(mesh, first);
+                let tm = &expansion.main.tm;
+                rings.walk(mesh, comp, tm);
+                bytes += FAR_T0_BYTES * rings.far_t0(mesh, comp, tm);
+                let offsets = rings.tip_offsets(mesh, first);
+                let [without, with] = plain::long_pairs(&offsets, 1 << BLOCK_SHIFT);
+                long[0] += without;
+                long[1] += with;
+                bases += BASE_BYTES * offsets.len().div_ceil(1 << BLOCK_SHIFT) as u64;
             }
         }
-        bytes
+        // The writer keeps the tip bases when they save bytes.
+        bytes + (LONG_PAIR_BYTES * long[0]).min(LONG_PAIR_BYTES * long[1] + bases)
     }
 }
 
 /// Estimated bytes of a pair whose tip is too far for a plain pair ([`Prepared::compact_estimate`]).
 const LONG_PAIR_BYTES: u64 = 10;
+/// Bytes of a block's two tip bases.
+const BASE_BYTES: u64 = 8;
+/// Estimated bytes beyond [`T0_BYTES`] of a T0 triangle whose vertices lie too far apart
+/// along the ring for a row's offsets: an overflow row, and long corner fields for the
+/// records that name it.
+const FAR_T0_BYTES: u64 = 32;
 /// Estimated bytes of a T0 triangle: its row and its neighbours' records.
 const T0_BYTES: u64 = 26;
 
@@ -563,22 +578,39 @@ impl Rings {
         self.starts.push(self.ring_corner.len() as u32);
     }
 
-    /// Pairs of the ring vertices from position `first` on with a tip too far for a plain
-    /// pair's offset, or off the rings ([`Prepared::compact_estimate`]).
-    fn long_pairs(&self, mesh: &Closed, first: usize) -> u64 {
-        let far = |v: usize, tip: u32| {
+    /// The T0 triangles of `comp` (marks `tm`, walked) that no wart takes and whose vertices
+    /// lie further apart along the rings than a T0 row's 15-bit offsets reach, or off them
+    /// ([`Prepared::compact_estimate`]).
+    fn far_t0(&self, mesh: &Closed, comp: &Component, tm: &Marks) -> u64 {
+        let edges = |u| ring_edges(mesh, tm, u);
+        let far = |t: u32| {
+            let ids = [0, 1, 2].map(|i| self.ring_id[mesh.v(3 * t + i) as usize]);
+            let (lo, hi) = (ids.iter().min(), ids.iter().max());
+            ids.contains(&NONE) || hi.zip(lo).is_some_and(|(h, l)| (h - l) as i64 > SHORT_MAX)
+        };
+        comp.triangles
+            .iter()
+            .filter(|&&t| t0_without_wart(mesh, t, edges) && far(t))
+            .count() as u64
+    }
+
+    /// The offsets `tip − v` of the left and right tips of the ring vertices from position
+    /// `first` on, as [`plain::long_pairs`] takes them: 0 for a dummy (`NULL`), `i64::MAX`
+    /// for a tip off the rings ([`Prepared::compact_estimate`]).
+    fn tip_offsets(&self, mesh: &Closed, first: usize) -> Vec<[i64; 2]> {
+        let offset = |v: usize, tip: u32| {
             if tip >= mesh.real_vertices {
-                return false; // a dummy: NULL
+                return 0; // a dummy: NULL
             }
             match self.ring_id[tip as usize] {
-                NONE => true,
-                r => (r as i64 - v as i64).abs() > SHORT_MAX,
+                NONE => i64::MAX,
+                r => r as i64 - v as i64,
             }
         };
         let corners = self.ring_corner.iter().enumerate().skip(first);
         corners
-            .filter(|&(v, &c)| far(v, mesh.v(c)) || far(v, mesh.v(mesh.o(c))))
-            .count() as u64
+            .map(|(v, &c)| [offset(v, mesh.v(c)), offset(v, mesh.v(mesh.o(c)))])
+            .collect()
     }
 }
 

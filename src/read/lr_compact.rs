@@ -8,10 +8,10 @@ use super::lr_rules::{check_rings, check_vertex_corners, verified_boundaries, Sl
 use super::Sections;
 use crate::corner_table::NONE;
 use crate::error::{Result, Rule};
-use crate::format::layout::{LrbeHeader, LR_BOUNDARIES_ON_RING};
+use crate::format::layout::{LrbeHeader, LRBE_TIP_BASES, LR_BOUNDARIES_ON_RING};
 use crate::format::Tag;
 use crate::ids::Corner;
-use crate::lr::compact::{BLOCK_SHIFT, EXTENDED, OVERFLOW_ROW_WORDS, T0_ROW_UNITS};
+use crate::lr::compact::{plain, BLOCK_SHIFT, EXTENDED, OVERFLOW_ROW_WORDS, T0_ROW_UNITS};
 use crate::lr::{CompactTables, LrLayout, NULL};
 use crate::words::{LeUnits, LeWords, Units, Words};
 
@@ -30,7 +30,7 @@ pub(super) fn lr_compact_tables<'a>(
     let h = LrbeHeader::read(b);
     let (m_r, rings, n0, overflow_rows) = (h.m_r, h.rings, h.t0, h.overflow_rows);
     f.expect_vertices(0, h.m, m, Rule(33))?;
-    if h.flags & !LR_BOUNDARIES_ON_RING != 0 {
+    if h.flags & !(LR_BOUNDARIES_ON_RING | LRBE_TIP_BASES) != 0 {
         return Err(f.err(28, Rule(33), "unknown flag bits are set"));
     }
     if m >= NULL {
@@ -53,12 +53,12 @@ pub(super) fn lr_compact_tables<'a>(
     let layout = h.layout();
     f.expect_len(layout.as_ref().map(|l| l.len), Rule(33))?;
     let layout = layout.expect("checked by expect_len");
-    let arrays: [_; 10] = std::array::from_fn(|i| layout.arrays[i]);
-    let words: [_; 8] = std::array::from_fn(|i| LeWords(&b[arrays[i].start..arrays[i].end()]));
+    let arrays: [_; 11] = std::array::from_fn(|i| layout.arrays[i]);
+    let words: [_; 9] = std::array::from_fn(|i| LeWords(&b[arrays[i].start..arrays[i].end()]));
     let units: [_; 2] =
-        std::array::from_fn(|i| LeUnits(&b[arrays[8 + i].start..arrays[8 + i].end()]));
+        std::array::from_fn(|i| LeUnits(&b[arrays[9 + i].start..arrays[9 + i].end()]));
     let starts = arrays.map(|a| a.start);
-    let [ring_starts, ring_last, ring_rank, pairs, blocks, groups, c, overflow] = words;
+    let [ring_starts, ring_last, ring_rank, pairs, blocks, groups, c, overflow, bases] = words;
     let [t0, records] = units;
     let word_err = |array: usize, i: usize, rule: Rule, message: String| {
         f.err(starts[array] + 4 * i, rule, message)
@@ -81,6 +81,7 @@ pub(super) fn lr_compact_tables<'a>(
         ring_rank,
         pairs,
         blocks,
+        bases,
         groups,
         c,
         overflow,
@@ -89,6 +90,7 @@ pub(super) fn lr_compact_tables<'a>(
         m_r,
         m,
         boundaries_on_ring: false,
+        tip_bases: h.has_tip_bases(),
     };
 
     // [V35] pairs and records: records tile the record units in ring order, each block's
@@ -125,7 +127,7 @@ pub(super) fn lr_compact_tables<'a>(
             };
             if let Some(i) = fault {
                 return Err(unit_err(
-                    8,
+                    9,
                     at + i,
                     Rule(36),
                     format!("T0 row {j}: malformed overflow row (overflow row {next_overflow} expected)"),
@@ -134,7 +136,7 @@ pub(super) fn lr_compact_tables<'a>(
             next_overflow += 1;
         } else if codes & !0x3F != 0 {
             return Err(unit_err(
-                8,
+                9,
                 at + 3,
                 Rule(36),
                 format!("T0 row {j}: reserved bits set"),
@@ -142,7 +144,7 @@ pub(super) fn lr_compact_tables<'a>(
         } else if let Some(i) = [1, 2].into_iter().find(|&i| t0.at(at + i) & 0x8000 != 0) {
             // A vertex field is 15 bits.
             return Err(unit_err(
-                8,
+                9,
                 at + i,
                 Rule(36),
                 format!("T0 row {j}: vertex field out of range"),
@@ -156,7 +158,7 @@ pub(super) fn lr_compact_tables<'a>(
                     let word = OVERFLOW_ROW_WORDS * overflow_index as usize + i as usize;
                     word_err(7, word, Rule(36), message)
                 } else {
-                    unit_err(8, at + i as usize, Rule(36), message)
+                    unit_err(9, at + i as usize, Rule(36), message)
                 });
             }
         }
@@ -224,7 +226,7 @@ pub(super) fn lr_compact_tables<'a>(
     }
     let corner_at = |c: Corner| {
         if c.0 >= 8 * m_r {
-            starts[8] + 2 * T0_ROW_UNITS * ((c.0 - 8 * m_r) / 4) as usize
+            starts[9] + 2 * T0_ROW_UNITS * ((c.0 - 8 * m_r) / 4) as usize
         } else {
             starts[3] + 4 * (c.0 >> 3) as usize
         }
@@ -286,7 +288,7 @@ fn check_pairs(
                 .filter(|x| start + x.len <= t.records.count())
                 .ok_or_else(|| {
                     unit_err(
-                        9,
+                        10,
                         start.min(t.records.count()),
                         Rule(35),
                         format!("record of pair {v} runs past the record units"),
@@ -304,14 +306,24 @@ fn check_pairs(
         }
         for side in [0, 1] {
             let tip = t.tip(v, side);
-            let ok = tip < m || (tip == NULL && side == 1 && !t.wart(v, side));
+            // A plain pair's tip is NULL only by field 0 (with tip bases, a far field may
+            // add up to NULL's value).
+            let field = (p >> (15 * side)) & 0x7FFF;
+            let null_field = p >> 30 == EXTENDED || field == plain::NULL_FIELD;
+            let ok = tip < m || (tip == NULL && side == 1 && !t.wart(v, side) && null_field);
             if !ok {
+                let base = match t.base(v, side) {
+                    Some(base) if p >> 30 != EXTENDED && field & plain::FAR != 0 => {
+                        format!(", from block {}'s base {base}", v >> BLOCK_SHIFT)
+                    }
+                    _ => String::new(),
+                };
                 return Err(word_err(
                     3,
                     v as usize,
                     Rule(35),
                     format!(
-                        "slot {} has tip {tip:#x} ({m} vertices)",
+                        "slot {} has tip {tip:#x} ({m} vertices){base}",
                         2 * v as usize + side
                     ),
                 ));
@@ -328,7 +340,7 @@ fn check_pairs(
     }
     if next_record != t.records.count() {
         return Err(unit_err(
-            9,
+            10,
             next_record,
             Rule(35),
             format!(

@@ -5,7 +5,7 @@
 //! first fault and names it.
 
 use super::lr_rules::{one_ring_next_next, ring_slot_flags, BitsSet, CANONICAL, JUMPS};
-use crate::lr::compact::{BLOCK_SHIFT, EXTENDED, WART_LEFT};
+use crate::lr::compact::{plain, BLOCK_SHIFT, EXTENDED, WART_LEFT};
 use crate::lr::{CompactTables, NULL};
 use crate::words::{LeUnits, LeWords, Units, Words};
 
@@ -22,71 +22,14 @@ pub(super) struct PairScan {
     pub stored: Vec<(u32, u32)>,
 }
 
-/// Sign-extends the low 15 bits.
-#[inline(always)]
-fn short15(bits: u32) -> i32 {
-    ((bits as i32) << 17) >> 17
-}
-
 /// [V35] on every pair, and with `one_ring` the slot flags, for tables of `m` vertices.
 pub(super) fn scan_pairs(t: &Tables, m: u32, one_ring: bool) -> PairScan {
     let m_r = t.m_r;
     let mut flags = vec![0u8; if one_ring { 2 * m_r as usize } else { 0 }];
-    // Plain pairs: tips in range (the left one never NULL, the right one NULL only without
-    // WART), bitwise rather than short-circuit logic; extended pairs are checked below.
-    let mut bad = 0u32;
-    let mut canonical = 0u32;
-    // Tips and WART flags of pair `v` (word `p`), and whether they break V35 when plain.
-    let pair = |v: u32, p: u32| {
-        let config = p >> 30;
-        let plain = (config != EXTENDED) as u32;
-        let d = [short15(p), short15(p >> 15)];
-        let tip = d.map(|d| {
-            if d == 0 {
-                NULL
-            } else {
-                v.wrapping_add_signed(d)
-            }
-        });
-        let wart = [config == WART_LEFT, config == WART_LEFT + 1].map(|w| w as u32);
-        let ok =
-            (tip[0] < m) as u32 & ((tip[1] < m) as u32 | ((tip[1] == NULL) as u32 & (1 ^ wart[1])));
-        (tip, wart, plain & (1 ^ ok))
+    let (bad, mut canonical) = match t.has_tip_bases() {
+        true => plain_pass::<true>(t, m, &mut flags),
+        false => plain_pass::<false>(t, m, &mut flags),
     };
-    let words = t.pairs.0.chunks_exact(4).enumerate().map(|(v, word)| {
-        let p = u32::from_le_bytes(word.try_into().expect("four bytes"));
-        (v as u32, p)
-    });
-    // Zipped rather than indexed, so that the pass has no bounds checks and vectorizes.
-    if one_ring {
-        // A slot is redundant when its tip is `v.n.n`: `v + 2`, a delta of 2, but for the
-        // last two pairs (the ring wraps), whose flags are made again below. Extended
-        // pairs get no flags here (the extended pass makes them).
-        for ((v, p), slot_flags) in words.zip(flags.chunks_exact_mut(2)) {
-            let (fault, pair_flags, pair_canonical) = plain_flags(v, p, m);
-            bad |= fault;
-            canonical += pair_canonical;
-            slot_flags.copy_from_slice(&pair_flags.to_le_bytes());
-        }
-        for v in m_r.saturating_sub(2)..m_r {
-            let p = t.pairs.at(v as usize);
-            if p >> 30 == EXTENDED {
-                continue; // flagged by the extended pass
-            }
-            let (tip, wart, _) = pair(v, p);
-            let nn = one_ring_next_next(v, m_r);
-            for side in 0..2 {
-                let slot = &mut flags[2 * v as usize + side];
-                canonical -= (*slot & CANONICAL) as u32;
-                *slot = ring_slot_flags(tip[side], wart[side], 0, nn);
-                canonical += (*slot & CANONICAL) as u32;
-            }
-        }
-    } else {
-        for (v, p) in words {
-            bad |= pair(v, p).2;
-        }
-    }
     // A stored opposite takes a record unit at least.
     let mut stored = Vec::with_capacity(if bad == 0 { t.records.count() } else { 0 });
     let pairs_hold = bad == 0
@@ -103,19 +46,83 @@ pub(super) fn scan_pairs(t: &Tables, m: u32, one_ring: bool) -> PairScan {
     }
 }
 
-/// Pair `v` (word `p`) read as plain, for tables of `m` vertices on one ring: whether it
-/// breaks [V35], its two slot flags (left in the low byte; none for an extended pair) and
-/// how many are canonical, with `v.n.n = v + 2`: [`ring_slot_flags`] for the deltas a plain
-/// pair stores (a tip is `NULL` for a delta of 0 and `v.n.n` for a delta of 2).
+/// The plain pairs (extended ones are checked by [`extended_pairs_hold`]): whether one breaks
+/// [V35] (non-zero), and with `flags` as long as the slots (one ring) their slot flags and
+/// how many are canonical. `BASES`: the tables have tip bases. Bitwise rather than
+/// short-circuit logic, and block by block with the block's bases in hand, so that the pass
+/// over the words vectorizes.
+fn plain_pass<const BASES: bool>(t: &Tables, m: u32, flags: &mut [u8]) -> (u32, u32) {
+    let m_r = t.m_r;
+    let one_ring = !flags.is_empty();
+    let (mut bad, mut canonical) = (0u32, 0u32);
+    let bases = |block: usize| match BASES {
+        true => [0, 1].map(|side| t.bases.at(2 * block + side) as i32),
+        false => [0; 2],
+    };
+    let block_bytes = 4 << BLOCK_SHIFT;
+    for (block, words) in t.pairs.0.chunks(block_bytes).enumerate() {
+        let base = bases(block);
+        let first = (block << BLOCK_SHIFT) as u32;
+        let words = words.chunks_exact(4).enumerate().map(|(i, word)| {
+            let p = u32::from_le_bytes(word.try_into().expect("four bytes"));
+            (first + i as u32, p)
+        });
+        // Zipped rather than indexed, so that the pass has no bounds checks and vectorizes.
+        if one_ring {
+            let slots = &mut flags[2 * first as usize..];
+            for ((v, p), slot_flags) in words.zip(slots.chunks_exact_mut(2)) {
+                let (fault, pair_flags, pair_canonical) = plain_flags::<BASES>(v, p, m, base);
+                bad |= fault;
+                canonical += pair_canonical;
+                slot_flags.copy_from_slice(&pair_flags.to_le_bytes());
+            }
+        } else {
+            for (v, p) in words {
+                bad |= plain_flags::<BASES>(v, p, m, base).0;
+            }
+        }
+    }
+    if one_ring {
+        // A slot is redundant when its tip is `v.n.n`: `v + 2`, a delta of 2, but for the
+        // last two pairs (the ring wraps), whose flags are made again here. Extended pairs
+        // got no flags (the extended pass makes them).
+        for v in m_r.saturating_sub(2)..m_r {
+            let p = t.pairs.at(v as usize);
+            if p >> 30 == EXTENDED {
+                continue;
+            }
+            let nn = one_ring_next_next(v, m_r);
+            let config = p >> 30;
+            for side in 0..2 {
+                let base = BASES.then(|| bases((v >> BLOCK_SHIFT) as usize)[side]);
+                let tip = plain::tip(v, p >> (15 * side), base);
+                let wart = (config == WART_LEFT + side as u32) as u32;
+                let slot = &mut flags[2 * v as usize + side];
+                canonical -= (*slot & CANONICAL) as u32;
+                *slot = ring_slot_flags(tip, wart, 0, nn);
+                canonical += (*slot & CANONICAL) as u32;
+            }
+        }
+    }
+    (bad, canonical)
+}
+
+/// Pair `v` (word `p`) read as plain, for tables of `m` vertices, with the bases `base` of
+/// its block when `BASES`: whether it breaks [V35] (its tips in range: the left one never
+/// `NULL`, the right one `NULL` only without WART), and on one ring its two slot flags
+/// (left in the low byte; none for an extended pair) and how many are canonical, with
+/// `v.n.n = v + 2`: [`ring_slot_flags`] for the offsets a plain pair stores (a tip is
+/// `NULL` for field 0 and `v.n.n` for an offset of 2).
 #[inline(always)]
-fn plain_flags(v: u32, p: u32, m: u32) -> (u32, u16, u32) {
+fn plain_flags<const BASES: bool>(v: u32, p: u32, m: u32, base: [i32; 2]) -> (u32, u16, u32) {
     let config = p >> 30;
     let plain = (config != EXTENDED) as u32;
-    let d = [short15(p), short15(p >> 15)];
     let (mut ok, mut flags, mut canonical) = (1u32, 0u32, 0u32);
-    for (side, d) in d.into_iter().enumerate() {
+    for (side, base) in base.into_iter().enumerate() {
+        let f = (p >> (15 * side)) & 0x7FFF;
+        let d = plain::offset(f, BASES.then_some(base));
         let wart = (config == WART_LEFT + side as u32) as u32;
-        let null = (d == 0) as u32;
+        let null = (f == plain::NULL_FIELD) as u32;
         let vertex = (v.wrapping_add_signed(d) < m) as u32 & (1 ^ null);
         // Left: a vertex; right: a vertex, or NULL without WART.
         ok &= if side == 0 {
@@ -123,7 +130,7 @@ fn plain_flags(v: u32, p: u32, m: u32) -> (u32, u16, u32) {
         } else {
             vertex | (null & (1 ^ wart))
         };
-        let redundant = (1 ^ wart) & (d == 2) as u32;
+        let redundant = (1 ^ wart) & (1 ^ null) & (d == 2) as u32;
         let is_canonical = (1 ^ null) & (1 ^ redundant) & plain;
         let jumps = (redundant | wart) & plain;
         canonical += is_canonical;
@@ -257,5 +264,87 @@ mod tests {
     #[test]
     fn the_fast_pass_and_the_pair_loop_agree_on_forged_files() {
         crate::read::read_forged_files(0b001, 35, 3000);
+    }
+}
+
+#[cfg(all(test, feature = "generate"))]
+mod tip_bases_tests {
+    use crate::format::layout::LrbeHeader;
+    use crate::format::Tag;
+    use crate::generate::{self, Rng};
+    use crate::read::{open, Limits};
+    use crate::write::{assemble, encode, Connectivity, EncodeOptions, SectionBytes};
+
+    /// A bit-efficient LR file with tip bases on a depth-first ring of 40 blocks, far fields
+    /// in most plain pairs (the forged files of the fuzz targets are small tori, all near):
+    /// its sections, the index of `LRBE`, and where `PAIRS` and `BASES` start in it.
+    fn base() -> (Vec<SectionBytes>, usize, usize, usize) {
+        let mut mesh = generate::irregular_torus(20_000, 3);
+        generate::punch_holes(&mut mesh, 6, &mut Rng::new(3));
+        let options = EncodeOptions {
+            connectivity: Connectivity::LrCompact,
+            periods: vec![0],
+            tip_bases: Some(true),
+            ..EncodeOptions::default()
+        };
+        let bytes = encode(&mesh, &options).expect("a generated mesh encodes");
+        let sections: Vec<_> = open(&bytes, &Limits::default())
+            .expect("what we write opens")
+            .sections
+            .sections
+            .iter()
+            .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
+            .collect();
+        let k = sections
+            .iter()
+            .position(|s| s.0 == Tag::LRBE)
+            .expect("LRBE");
+        let layout = LrbeHeader::read(&sections[k].2).layout().expect("a layout");
+        let at = |name| layout.array(name).start;
+        (sections, k, at("PAIRS"), at("BASES"))
+    }
+
+    /// Pair words and bases overwritten by others or by random words, and bit 14 of fields
+    /// flipped: under `cfg(test)` `open` runs the fast pass and the pair loop on each file
+    /// and asserts that they agree (and the slot flags too). Both verdicts occur.
+    #[test]
+    fn the_fast_pass_and_the_pair_loop_agree_with_far_fields() {
+        let (base, k, pairs, bases) = base();
+        let m_r = (bases - pairs) / 4;
+        let blocks = m_r.div_ceil(256);
+        assert!(blocks >= 40, "{blocks} blocks");
+        let word = |s: &[u8], at: usize| u32::from_le_bytes(s[at..at + 4].try_into().unwrap());
+        let far = (0..m_r)
+            .map(|v| word(&base[k].2, pairs + 4 * v))
+            .filter(|p| p >> 30 != 3 && (p & 1 << 14 != 0 || p & 1 << 29 != 0))
+            .count();
+        assert!(far > m_r / 50, "{far} pairs with a far field of {m_r}");
+        let mut rng = Rng::new(26);
+        let (mut opened, mut refused) = (0, 0);
+        for case in 0..2000 {
+            let mut sections = base.clone();
+            let section = &mut sections[k].2;
+            for _ in 0..1 + rng.below(3) {
+                let (at, n) = match case % 3 {
+                    0 => (bases, 2 * blocks),
+                    _ => (pairs, m_r),
+                };
+                let to = at + 4 * rng.below(n as u32) as usize;
+                let x = match rng.below(3) {
+                    0 => word(section, at + 4 * rng.below(n as u32) as usize),
+                    1 => word(section, to) ^ 1 << (14 + 15 * rng.below(2)),
+                    _ => rng.below(u32::MAX),
+                };
+                section[to..to + 4].copy_from_slice(&x.to_le_bytes());
+            }
+            match open(&assemble(&sections), &Limits::default()) {
+                Ok(_) => opened += 1,
+                Err(_) => refused += 1,
+            }
+        }
+        assert!(
+            opened > 0 && refused > 0,
+            "{opened} opened, {refused} refused"
+        );
     }
 }

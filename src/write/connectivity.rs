@@ -5,8 +5,8 @@ use crate::corner_table::CornerTable;
 use crate::edgebreaker;
 use crate::error::Result;
 use crate::format::layout::{
-    write_fields, Layout, LrbeHeader, LrtbHeader, StrpHeader, ZiprHeader, LR_BOUNDARIES_ON_RING,
-    ZIPPER_PACKED_LISTS, ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
+    write_fields, Layout, LrbeHeader, LrtbHeader, StrpHeader, ZiprHeader, LRBE_TIP_BASES,
+    LR_BOUNDARIES_ON_RING, ZIPPER_PACKED_LISTS, ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
 };
 use crate::format::{Kind, Tag};
 use crate::ids::{Triangle, Vertex};
@@ -169,6 +169,7 @@ pub(super) fn lr_compact_section(lr: &CompactLr, shape: bool) -> Encoded {
             &t.groups,
             &t.c,
             &t.overflow,
+            &t.bases,
         ],
         &[&t.t0, &t.records],
     );
@@ -196,7 +197,11 @@ pub(crate) fn lr_compact_header(lr: &CompactLr) -> LrbeHeader {
         record_units: t.record_units(),
         overflow_rows: t.overflow_rows(),
         period: lr.period(),
-        flags: boundary_flag(t),
+        flags: boundary_flag(t)
+            | match t.has_tip_bases() {
+                true => LRBE_TIP_BASES,
+                false => 0,
+            },
     }
 }
 

@@ -80,6 +80,9 @@ pub struct EncodeOptions {
     /// Periods of HYBRID-RING-EXPANDER tried for [`Connectivity::LrCompact`] (0: depth
     /// first); the smallest result is stored.
     pub periods: Vec<u32>,
+    /// Tip bases of [`Connectivity::LrCompact`] ([`CompactOptions::tip_bases`]): `None` when
+    /// they make the section smaller.
+    pub tip_bases: Option<bool>,
     /// Options of the stripper, for [`Connectivity::Strips`] (fans are never used).
     pub strips: StripOptions,
     /// Store the permutations back to the input's vertex and triangle order.
@@ -112,6 +115,7 @@ impl Default for EncodeOptions {
             connectivity: Connectivity::Lr,
             lr: LrOptions::default(),
             periods: CompactOptions::default().periods,
+            tip_bases: None,
             strips: StripOptions::default(),
             keep_order: false,
             orient: Orient::AsGiven,
@@ -369,6 +373,7 @@ fn make(table: &CornerTable, options: &EncodeOptions) -> Result<Option<Made>> {
             &CompactOptions {
                 lr: options.lr,
                 periods: options.periods.clone(),
+                tip_bases: options.tip_bases,
             },
         )?)),
         Connectivity::Zipper => Some(Made::Zipper(Zipper::build(table, &options.lr)?)),

@@ -265,8 +265,9 @@ pub const PAIRS: usize = 3;
 pub const BLOCKS: usize = 4;
 pub const LRBE_C: usize = 6;
 pub const OVERFLOW: usize = 7;
-pub const ROWS: usize = 8;
-pub const RECORDS: usize = 9;
+pub const BASES: usize = 8;
+pub const ROWS: usize = 9;
+pub const RECORDS: usize = 10;
 
 /// File offset of element `i` of array `name` of `LRTB`.
 pub fn lrtb_at(bytes: &[u8], name: &str, i: usize) -> u64 {

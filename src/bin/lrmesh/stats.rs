@@ -90,6 +90,7 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
             &CompactOptions {
                 lr: lr_options,
                 periods: compact_periods(args.period),
+                ..CompactOptions::default()
             },
         )
     })?

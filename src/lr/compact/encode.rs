@@ -6,10 +6,10 @@
 
 use super::tables::CompactTables;
 use super::{
-    CompactLr, CompactOptions, BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, ESCAPE, EXTENDED, FIELD13,
-    GROUP_SHIFT, HEAD_TIP_SHIFT, IN_ADJACENT_ROW, NO_OPPOSITE, OVERFLOW_FLAG, OVERFLOW_ROW_WORDS,
-    PLAIN, RECORD_SHIFT, RIGHT_LONG, SHORT_MAX, T0_ROW_UNITS, TAG_T0, WART_LEFT, WART_RIGHT,
-    X_IRREGULAR, X_WART,
+    plain, CompactLr, CompactOptions, BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, ESCAPE, EXTENDED,
+    FIELD13, GROUP_SHIFT, HEAD_TIP_SHIFT, IN_ADJACENT_ROW, NO_OPPOSITE, OVERFLOW_FLAG,
+    OVERFLOW_ROW_WORDS, PLAIN, RECORD_SHIFT, RIGHT_LONG, SHORT_MAX, T0_ROW_UNITS, TAG_T0,
+    WART_LEFT, WART_RIGHT, X_IRREGULAR, X_WART,
 };
 use crate::corner_table::{CornerTable, NONE};
 use crate::error::{Error, Result};
@@ -31,11 +31,12 @@ impl CompactLr {
         let period = choose_period(&prepared, &options.periods, &options.lr);
         let rings = prepared.rings(period, &options.lr);
         let lr = Lr::from_rings(ct, prepared, rings, &options.lr)?;
-        CompactLr::encode(lr, period)
+        CompactLr::encode(lr, period, options.tip_bases)
     }
 
-    /// Encodes a standard LR built with period `period`.
-    fn encode(lr: Lr, period: u32) -> Result<CompactLr> {
+    /// Encodes a standard LR built with period `period`, with tip bases as `tip_bases` says
+    /// ([`CompactOptions::tip_bases`]).
+    fn encode(lr: Lr, period: u32, tip_bases: Option<bool>) -> Result<CompactLr> {
         let t = lr.tables();
         let m_r = t.m_r;
         let blocks = (m_r as usize).div_ceil(1 << BLOCK_SHIFT);
@@ -88,6 +89,45 @@ impl CompactLr {
             block_words[2 * b + 1] = first_row[b];
         }
 
+        // Tip bases (see `plain`): per block and side, the base of the tips too far for a
+        // near field; kept when the pairs they make plain save more bytes than they take.
+        let bases: Vec<i32> = (0..blocks)
+            .flat_map(|b| {
+                let vs = (b << BLOCK_SHIFT) as u32..m_r.min(((b + 1) << BLOCK_SHIFT) as u32);
+                [LEFT, RIGHT].map(|side| {
+                    plain::choose_base(vs.clone().filter_map(|v| {
+                        let tip = t.tip(v, side);
+                        (tip != NULL).then(|| tip as i64 - v as i64)
+                    }))
+                })
+            })
+            .collect();
+        let plain_word = |v: u32, tip_bases: bool| -> Option<u32> {
+            let warts = [LEFT, RIGHT].map(|side| t.wart(v, side));
+            let config = match warts {
+                [false, false] => PLAIN,
+                [true, false] => WART_LEFT,
+                [false, true] => WART_RIGHT,
+                _ => return None,
+            };
+            let field = |side: usize| {
+                let base = tip_bases.then(|| bases[2 * (v >> BLOCK_SHIFT) as usize + side]);
+                plain::field(t.tip(v, side), v, side == RIGHT, base)
+            };
+            Some(config << 30 | field(RIGHT)? << 15 | field(LEFT)?)
+        };
+        let irregular = |v: u32| t.irregular(v, LEFT) || t.irregular(v, RIGHT);
+        let made_plain = || {
+            (0..m_r)
+                .filter(|&v| !irregular(v))
+                .map(|v| {
+                    plain_word(v, true).is_some() as i64 - plain_word(v, false).is_some() as i64
+                })
+                .sum::<i64>()
+        };
+        // A record for a long tip takes 6 bytes at least; the bases 8 bytes a block.
+        let tip_bases = tip_bases.unwrap_or_else(|| 6 * made_plain() > 8 * blocks as i64);
+
         // Pairs and records.
         let mut pairs = Vec::with_capacity(m_r as usize);
         let mut records: Vec<u16> = Vec::new();
@@ -99,16 +139,9 @@ impl CompactLr {
             let tips = [LEFT, RIGHT].map(|side| t.tip(v, side));
             let warts = [LEFT, RIGHT].map(|side| t.wart(v, side));
             let stored = stored_corners(t, v);
-            let offsets = [LEFT, RIGHT].map(|side| pair_offset(tips[side], v, side));
             if stored == [None; 4] {
-                let config = match warts {
-                    [false, false] => Some(PLAIN),
-                    [true, false] => Some(WART_LEFT),
-                    [false, true] => Some(WART_RIGHT),
-                    _ => None,
-                };
-                if let (Some(config), [Some(l), Some(r)]) = (config, offsets) {
-                    pairs.push(config << 30 | (r as u32 & 0x7FFF) << 15 | (l as u32 & 0x7FFF));
+                if let Some(word) = plain_word(v, tip_bases) {
+                    pairs.push(word);
                     continue;
                 }
             }
@@ -173,6 +206,10 @@ impl CompactLr {
             },
             pairs,
             blocks: block_words,
+            bases: match tip_bases {
+                true => bases.iter().map(|&b| b as u32).collect(),
+                false => Vec::new(),
+            },
             groups: Vec::new(),
             c: t.c.iter().map(|&x| map_corner(x)).collect(),
             overflow: Vec::new(),
@@ -181,6 +218,7 @@ impl CompactLr {
             m_r,
             m: t.m,
             boundaries_on_ring: t.boundaries_on_ring,
+            tip_bases,
         };
 
         // T0 rows, whose opposites are found with the ring slots and the rows before them.
@@ -240,15 +278,6 @@ impl CompactLr {
             t0_standard,
         })
     }
-}
-
-/// A plain pair's offset `tip - v` of one side, if it fits (`NULL`: 0 on the right).
-fn pair_offset(tip: u32, v: u32, side: usize) -> Option<i16> {
-    if tip == NULL {
-        return (side == RIGHT).then_some(0);
-    }
-    let d = tip as i64 - v as i64;
-    (d != 0 && (-SHORT_MAX - 1..=SHORT_MAX).contains(&d)).then_some(d as i16)
 }
 
 /// The order of the T0 rows (standard T0 indices): by anchor, except that T0 triangles next

@@ -6,6 +6,10 @@
 //!   choose a configuration: two plain slots, a wart on the left, a wart on the right, or
 //!   *extended*. A plain pair holds both tips as 15-bit signed offsets `tip - v`
 //!   (HYBRID-RING-EXPANDER keeps them small, section 6.1); offset 0 on the right is `NULL`.
+//!   *Beyond the paper*, with **tip bases** (when they save bytes) an offset is 14 bits from
+//!   `v` or from `v` plus a base per side and block of 256 ring vertices: the depth-first
+//!   ring, with the fewest T0 and irregular triangles, then needs almost no records (see
+//!   `plain`).
 //! - An extended pair word holds the WART and IRREGULAR flags of both sides (so that the
 //!   operators' frequent flag checks never leave the word), the left tip in 13 bits, and where
 //!   its **record** starts. The record's head says which transversal corners have a stored
@@ -23,13 +27,15 @@
 //!   next to each other), or is `NONE`. *Beyond the paper*, which stores 192 bits per T0.
 //!   Rows that do not fit this move to a 32-bit overflow row.
 //! - Per block of 256 ring vertices: where the block's first record starts, and the first T0
-//!   row anchored in it (the reference of T0 corner fields in its records).
+//!   row anchored in it (the reference of T0 corner fields in its records); with tip bases,
+//!   the base of its left and of its right tips.
 //!
 //! The operators are those of [`LrLayout`](super::LrLayout); this module only encodes and
 //! decodes: the tables and their decoding are in `tables`, the construction in `encode`, the
 //! statistics in `stats`.
 
 mod encode;
+pub mod plain;
 mod stats;
 mod tables;
 
@@ -80,7 +86,7 @@ const TAG_T0: u16 = 0x8000;
 /// The 15-bit pattern of a long corner field (tag 0) or of `NONE` (tag 1).
 const ESCAPE: u16 = 0x4000;
 /// The largest difference a 15-bit field holds.
-pub(super) const SHORT_MAX: i64 = 0x3FFF;
+pub(crate) const SHORT_MAX: i64 = 0x3FFF;
 
 /// Options of the bit-efficient LR construction.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -90,6 +96,10 @@ pub struct CompactOptions {
     /// Periods `k` of HYBRID-RING-EXPANDER to choose from (0: depth-first RING-EXPANDER),
     /// as the paper chose `k` per mesh: the one whose rings promise the smallest encoding.
     pub periods: Vec<u32>,
+    /// Tip bases (the `LRBE` flag `TIP_BASES`, version 1.11; see `plain`): `None` when they
+    /// make the section smaller, `Some(true)` always, `Some(false)` never (a file that
+    /// readers of version 1.10 read).
+    pub tip_bases: Option<bool>,
 }
 
 impl Default for CompactOptions {
@@ -99,6 +109,7 @@ impl Default for CompactOptions {
             // Longer periods behave like depth first and were never the smallest on the
             // shared meshes (with 256, 512 and 1024 too, the same sizes were chosen).
             periods: vec![0, 16, 32, 64, 128],
+            tip_bases: None,
         }
     }
 }

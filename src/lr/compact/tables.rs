@@ -3,6 +3,7 @@
 //! [`LrLayout`] implementation through which the corner operators read them. Kept apart from
 //! the encoder so that what a container's reader runs is in one place.
 
+use super::plain::{self, short15};
 use super::{
     BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, ESCAPE, EXTENDED, FIELD13, GROUP_SHIFT,
     HEAD_TIP_SHIFT, IN_ADJACENT_ROW, OVERFLOW_FLAG, OVERFLOW_ROW_WORDS, RECORD_SHIFT, RIGHT_LONG,
@@ -11,12 +12,6 @@ use super::{
 use crate::corner_table::NONE;
 use crate::lr::tables::{LrLayout, LEFT, NULL, RIGHT};
 use crate::words::{Units, Words};
-
-/// Sign-extends the low 15 bits.
-#[inline(always)]
-fn short15(unit: u32) -> i32 {
-    ((unit as i32) << 17) >> 17
-}
 
 /// Sign-extends the low 13 bits.
 #[inline(always)]
@@ -74,6 +69,9 @@ pub struct CompactTables<W, U> {
     pub(crate) blocks: W,
     /// Per group of T0 rows: the anchor its offsets start from.
     pub(crate) groups: W,
+    /// With `tip_bases`, per block: the base of its left tips, then of its right tips
+    /// (two's complement); empty without.
+    pub(crate) bases: W,
     /// A corner of each isolated vertex (`NONE` for a vertex without triangles).
     pub(crate) c: W,
     /// Overflow rows of T0 rows that do not fit in units.
@@ -86,6 +84,9 @@ pub struct CompactTables<W, U> {
     pub(crate) m: u32,
     /// As [`LrTables`](crate::lr::LrTables)' field: derived, never stored.
     pub(crate) boundaries_on_ring: bool,
+    /// The header's `TIP_BASES` flag: plain tips are 14-bit offsets from `v` or from `v`
+    /// plus the block's base (see `plain`).
+    pub(crate) tip_bases: bool,
 }
 
 /// Where the parts of an extended pair's record are.
@@ -104,6 +105,18 @@ impl<W: Words, U: Units> CompactTables<W, U> {
     #[inline(always)]
     fn pair(&self, v: u32) -> u32 {
         self.pairs.at(v as usize)
+    }
+
+    /// The base of side `side`'s plain tips in `v`'s block, `None` without tip bases.
+    #[inline(always)]
+    pub(crate) fn base(&self, v: u32, side: usize) -> Option<i32> {
+        self.tip_bases
+            .then(|| self.bases.at(2 * (v >> BLOCK_SHIFT) as usize + side) as i32)
+    }
+
+    /// Whether the tables have tip bases (the header's `TIP_BASES` flag).
+    pub fn has_tip_bases(&self) -> bool {
+        self.tip_bases
     }
 
     #[inline(always)]
@@ -302,10 +315,7 @@ impl<W: Words, U: Units> LrLayout for CompactTables<W, U> {
     fn tip(&self, v: u32, side: usize) -> u32 {
         let p = self.pair(v);
         if p >> 30 != EXTENDED {
-            return match short15(p >> (15 * side)) {
-                0 => NULL,
-                d => v.wrapping_add_signed(d),
-            };
+            return plain::tip(v, p >> (15 * side), self.base(v, side));
         }
         if side == LEFT {
             match short13(p) {
@@ -413,6 +423,7 @@ pub(super) fn stored_bytes<W: Words, U: Units>(t: &CompactTables<W, U>) -> u64 {
         + t.ring_rank.count()
         + t.pairs.count()
         + t.blocks.count()
+        + t.bases.count()
         + t.groups.count()
         + t.c.count()
         + t.overflow.count();
