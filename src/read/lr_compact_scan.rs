@@ -94,8 +94,8 @@ fn plain_pass<const BASES: bool>(t: &Tables, m: u32, flags: &mut [u8]) -> (u32, 
             let nn = one_ring_next_next(v, m_r);
             let config = p >> 30;
             for side in 0..2 {
-                let base = BASES.then(|| bases((v >> BLOCK_SHIFT) as usize)[side]);
-                let tip = plain::tip(v, p >> (15 * side), base);
+                let base = || bases((v >> BLOCK_SHIFT) as usize)[side];
+                let tip = plain::tip(v, p >> (15 * side), BASES, base);
                 let wart = (config == WART_LEFT + side as u32) as u32;
                 let slot = &mut flags[2 * v as usize + side];
                 canonical -= (*slot & CANONICAL) as u32;

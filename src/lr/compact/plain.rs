@@ -48,12 +48,23 @@ pub fn offset(f: u32, base: Option<i32>) -> i32 {
     }
 }
 
-/// The tip field `f` (its low 15 bits) gives ring vertex `v`.
+/// The tip field `f` (its low 15 bits) gives ring vertex `v`, in tables with tip bases or
+/// not; `base` reads the side's base in the pair's block, only for a far field (one load
+/// fewer for the operators on the common near ones).
 #[inline(always)]
-pub fn tip(v: u32, f: u32, base: Option<i32>) -> u32 {
-    match f & 0x7FFF {
-        NULL_FIELD => NULL,
-        f => v.wrapping_add_signed(offset(f, base)),
+pub fn tip(v: u32, f: u32, tip_bases: bool, base: impl FnOnce() -> i32) -> u32 {
+    let f = f & 0x7FFF;
+    if f == NULL_FIELD {
+        return NULL;
+    }
+    if !tip_bases {
+        return v.wrapping_add_signed(short15(f));
+    }
+    let tip = v.wrapping_add_signed(short14(f));
+    if f & FAR == 0 {
+        tip
+    } else {
+        tip.wrapping_add_signed(base())
     }
 }
 
@@ -161,13 +172,16 @@ mod tests {
                     for right in [false, true] {
                         if let Some(f) = field(tip, v, right, base) {
                             assert_eq!(f & !0x7FFF, 0);
-                            assert_eq!(self::tip(v, f, base), tip, "{v} {d} {base:?}");
+                            let got = self::tip(v, f, base.is_some(), || base.unwrap_or(0));
+                            assert_eq!(got, tip, "{v} {d} {base:?}");
+                            let f = f | (right as u32) << 15;
+                            assert_eq!(v.wrapping_add_signed(offset(f & 0x7FFF, base)), tip);
                         }
                     }
                 }
                 assert_eq!(field(NULL, v, true, base), Some(NULL_FIELD));
                 assert_eq!(field(NULL, v, false, base), None);
-                assert_eq!(tip(v, NULL_FIELD, base), NULL);
+                assert_eq!(tip(v, NULL_FIELD, base.is_some(), || 0), NULL);
             }
         }
         // Near offsets always fit; far ones fit within 2^13 of the base.
