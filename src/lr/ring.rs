@@ -290,9 +290,11 @@ impl<'a> Prepared<'a> {
 
     /// A guess of what the rings of `period` cost a bit-efficient LR beyond its pair words,
     /// in bytes: a T0 row and the records of its irregular neighbours for each T0 triangle no
-    /// wart takes, and a record for each pair with a tip too far for a plain pair's offset
-    /// (only a component of more vertices than that offset reaches has one, so only such a
-    /// component's ring is walked). The rings are one expansion per component (the first
+    /// wart takes, more for one whose vertices lie too far apart along the ring for a row,
+    /// and a record for each pair with a tip too far for a plain pair's field, without tip
+    /// bases or with them and their bytes, whichever is less, as the writer chooses (only a
+    /// component of more vertices than a near field reaches can have such tips, so only
+    /// such a component's ring is walked). The rings are one expansion per component (the first
     /// seed corner of [`Prepared::rings`]), or with `exact` the rings the build makes (all
     /// its tries and the leaf moves). The factors are least-squares fits of the built sizes
     /// over the shared meshes and periods; `lr::compact` ranks periods by it.
