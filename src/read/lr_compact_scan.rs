@@ -5,7 +5,7 @@
 //! first fault and names it.
 
 use super::lr_rules::{one_ring_next_next, ring_slot_flags, BitsSet, CANONICAL, JUMPS};
-use crate::lr::compact::{plain, BLOCK_SHIFT, EXTENDED, WART_LEFT};
+use crate::lr::compact::{plain, BLOCK_SHIFT, EXTENDED, SHORT_MAX, WART_LEFT};
 use crate::lr::{CompactTables, NULL};
 use crate::words::{LeUnits, LeWords, Units, Words};
 
@@ -67,18 +67,36 @@ fn plain_pass<const BASES: bool>(t: &Tables, m: u32, flags: &mut [u8]) -> (u32, 
             let p = u32::from_le_bytes(word.try_into().expect("four bytes"));
             (first + i as u32, p)
         });
+        let last = (first + words.len() as u32).saturating_sub(1);
+        let far_two = in_range_block::<BASES>(first, last, base, m);
         // Zipped rather than indexed, so that the pass has no bounds checks and vectorizes.
         if one_ring {
             let slots = &mut flags[2 * first as usize..];
-            for ((v, p), slot_flags) in words.zip(slots.chunks_exact_mut(2)) {
-                let (fault, pair_flags, pair_canonical) = plain_flags::<BASES>(v, p, m, base);
-                bad |= fault;
-                canonical += pair_canonical;
-                slot_flags.copy_from_slice(&pair_flags.to_le_bytes());
+            match far_two {
+                Some(far_two) => {
+                    for (word, slot_flags) in words.zip(slots.chunks_exact_mut(2)) {
+                        let (fault, pair_flags, pair_canonical) = field_flags(word.1, far_two);
+                        bad |= fault;
+                        canonical += pair_canonical;
+                        slot_flags.copy_from_slice(&pair_flags.to_le_bytes());
+                    }
+                }
+                None => {
+                    for ((v, p), slot_flags) in words.zip(slots.chunks_exact_mut(2)) {
+                        let (fault, pair_flags, pair_canonical) =
+                            plain_flags::<BASES>(v, p, m, base);
+                        bad |= fault;
+                        canonical += pair_canonical;
+                        slot_flags.copy_from_slice(&pair_flags.to_le_bytes());
+                    }
+                }
             }
         } else {
             for (v, p) in words {
-                bad |= plain_flags::<BASES>(v, p, m, base).0;
+                bad |= match far_two {
+                    Some(far_two) => field_flags(p, far_two).0,
+                    None => plain_flags::<BASES>(v, p, m, base).0,
+                };
             }
         }
     }
@@ -105,6 +123,65 @@ fn plain_pass<const BASES: bool>(t: &Tables, m: u32, flags: &mut [u8]) -> (u32, 
         }
     }
     (bad, canonical)
+}
+
+/// When every tip a field of the block of ring vertices `first..=last` can give (near, or far
+/// from `base`) is a vertex of `0..m`, the far field of offset 2 of each side (the field
+/// value no field can take, `u32::MAX`, when 2 is beyond the base's reach): then the block's
+/// verdict and flags follow from its fields alone ([`field_flags`]); `None` otherwise.
+#[inline(always)]
+fn in_range_block<const BASES: bool>(
+    first: u32,
+    last: u32,
+    base: [i32; 2],
+    m: u32,
+) -> Option<[u32; 2]> {
+    let (lo, hi) = if BASES {
+        (plain::NEAR_MIN, plain::NEAR_MAX)
+    } else {
+        (-SHORT_MAX - 1, SHORT_MAX)
+    };
+    let inside = |from: i64| first as i64 + from + lo >= 0 && last as i64 + from + hi < m as i64;
+    if !inside(0) {
+        return None;
+    }
+    let mut far_two = [u32::MAX; 2];
+    if BASES {
+        for (side, base) in base.into_iter().enumerate() {
+            if !inside(base as i64) {
+                return None;
+            }
+            let e = 2 - base as i64;
+            if (plain::NEAR_MIN..=plain::NEAR_MAX).contains(&e) {
+                far_two[side] = plain::FAR | e as u32 & 0x3FFF;
+            }
+        }
+    }
+    Some(far_two)
+}
+
+/// Pair word `p` of a block whose tips are all vertices ([`in_range_block`]), read as plain:
+/// whether it breaks [V35] (a `NULL` left tip, or right one with WART), its slot flags and
+/// how many are canonical, as [`plain_flags`] gives them, from the fields alone: a tip is
+/// `NULL` for field 0 and `v.n.n = v + 2` for field 2 or `far_two`.
+#[inline(always)]
+fn field_flags(p: u32, far_two: [u32; 2]) -> (u32, u16, u32) {
+    let config = p >> 30;
+    let plain = (config != EXTENDED) as u32;
+    let (mut fault, mut flags, mut canonical) = (0u32, 0u32, 0u32);
+    for (side, far_two) in far_two.into_iter().enumerate() {
+        let f = (p >> (15 * side)) & 0x7FFF;
+        let wart = (config == WART_LEFT + side as u32) as u32;
+        let null = (f == plain::NULL_FIELD) as u32;
+        fault |= null & if side == 0 { plain } else { wart };
+        let two = (f == 2) as u32 | (f == far_two) as u32;
+        let redundant = (1 ^ wart) & two;
+        let is_canonical = (1 ^ null) & (1 ^ redundant) & plain;
+        let jumps = (redundant | wart) & plain;
+        canonical += is_canonical;
+        flags |= ((is_canonical * CANONICAL as u32) | (jumps * JUMPS as u32)) << (8 * side);
+    }
+    (fault, flags as u16, canonical)
 }
 
 /// Pair `v` (word `p`) read as plain, for tables of `m` vertices, with the bases `base` of
@@ -273,18 +350,23 @@ mod tip_bases_tests {
     use crate::format::Tag;
     use crate::generate::{self, Rng};
     use crate::read::{open, Limits};
+    use crate::words::Words;
     use crate::write::{assemble, encode, Connectivity, EncodeOptions, SectionBytes};
 
-    /// A bit-efficient LR file with tip bases on a depth-first ring of 40 blocks, far fields
-    /// in most plain pairs (the forged files of the fuzz targets are small tori, all near):
-    /// its sections, the index of `LRBE`, and where `PAIRS` and `BASES` start in it.
-    fn base() -> (Vec<SectionBytes>, usize, usize, usize) {
-        let mut mesh = generate::irregular_torus(20_000, 3);
+    /// A bit-efficient LR file of over 100 blocks, many far enough from the ring's ends for
+    /// [`in_range_block`](super::in_range_block) (the forged files of the fuzz targets are
+    /// small tori): with `tip_bases`, on a depth-first ring with far fields in many plain
+    /// pairs; without, on a ring of period 64. Its sections, the index of `LRBE`, where
+    /// `PAIRS` and `BASES` start in it, and `m_r`.
+    fn base(tip_bases: bool) -> (Vec<SectionBytes>, usize, usize, usize, usize) {
+        // Without tip bases a near field reaches twice as far: a ring twice as long.
+        let triangles = if tip_bases { 60_000 } else { 120_000 };
+        let mut mesh = generate::irregular_torus(triangles, 3);
         generate::punch_holes(&mut mesh, 6, &mut Rng::new(3));
         let options = EncodeOptions {
             connectivity: Connectivity::LrCompact,
-            periods: vec![0],
-            tip_bases: Some(true),
+            periods: vec![if tip_bases { 0 } else { 64 }],
+            tip_bases: Some(tip_bases),
             ..EncodeOptions::default()
         };
         let bytes = encode(&mesh, &options).expect("a generated mesh encodes");
@@ -299,26 +381,58 @@ mod tip_bases_tests {
             .iter()
             .position(|s| s.0 == Tag::LRBE)
             .expect("LRBE");
-        let layout = LrbeHeader::read(&sections[k].2).layout().expect("a layout");
+        let header = LrbeHeader::read(&sections[k].2);
+        let layout = header.layout().expect("a layout");
         let at = |name| layout.array(name).start;
-        (sections, k, at("PAIRS"), at("BASES"))
+        (sections, k, at("PAIRS"), at("BASES"), header.m_r as usize)
     }
 
-    /// Pair words and bases overwritten by others or by random words, and bit 14 of fields
-    /// flipped: under `cfg(test)` `open` runs the fast pass and the pair loop on each file
-    /// and asserts that they agree (and the slot flags too). Both verdicts occur.
+    /// Pair words (and bases) overwritten by others or by random words, NULL and offset-2
+    /// fields, bit 14 of fields flipped: under `cfg(test)` `open` runs the fast pass and the
+    /// pair loop on each file and asserts that they agree (and the slot flags too), on
+    /// blocks read from their fields alone and on the others, with and without tip bases.
+    /// Both verdicts occur.
     #[test]
-    fn the_fast_pass_and_the_pair_loop_agree_with_far_fields() {
-        let (base, k, pairs, bases) = base();
-        let m_r = (bases - pairs) / 4;
+    fn the_fast_pass_and_the_pair_loop_agree_on_large_rings() {
+        for tip_bases in [true, false] {
+            agree_on_forged(tip_bases);
+        }
+    }
+
+    fn agree_on_forged(tip_bases: bool) {
+        let (base, k, pairs, bases, m_r) = base(tip_bases);
         let blocks = m_r.div_ceil(256);
-        assert!(blocks >= 40, "{blocks} blocks");
+        assert!(blocks >= 100, "{blocks} blocks");
         let word = |s: &[u8], at: usize| u32::from_le_bytes(s[at..at + 4].try_into().unwrap());
         let far = (0..m_r)
             .map(|v| word(&base[k].2, pairs + 4 * v))
             .filter(|p| p >> 30 != 3 && (p & 1 << 14 != 0 || p & 1 << 29 != 0))
             .count();
-        assert!(far > m_r / 50, "{far} pairs with a far field of {m_r}");
+        if tip_bases {
+            assert!(far > m_r / 50, "{far} pairs with a far field of {m_r}");
+        }
+        // Blocks whose flags come from their fields alone, and blocks that read every tip.
+        let bytes = assemble(&base);
+        let view = open(&bytes, &Limits::default()).expect("what we write opens");
+        let t = view.lr_compact().expect("lr-compact tables");
+        assert_eq!(t.has_tip_bases(), tip_bases);
+        let simple = (0..blocks)
+            .filter(|&b| {
+                let first = (b * 256) as u32;
+                let last = (first + 255).min(m_r as u32 - 1);
+                match tip_bases {
+                    true => {
+                        let base = [0, 1].map(|side| t.bases.at(2 * b + side) as i32);
+                        super::in_range_block::<true>(first, last, base, t.m).is_some()
+                    }
+                    false => super::in_range_block::<false>(first, last, [0; 2], t.m).is_some(),
+                }
+            })
+            .count();
+        assert!(
+            simple > blocks / 4 && simple < blocks,
+            "{simple} of {blocks}"
+        );
         let mut rng = Rng::new(26);
         let (mut opened, mut refused) = (0, 0);
         for case in 0..2000 {
@@ -326,13 +440,19 @@ mod tip_bases_tests {
             let section = &mut sections[k].2;
             for _ in 0..1 + rng.below(3) {
                 let (at, n) = match case % 3 {
-                    0 => (bases, 2 * blocks),
+                    0 if tip_bases => (bases, 2 * blocks),
                     _ => (pairs, m_r),
                 };
                 let to = at + 4 * rng.below(n as u32) as usize;
-                let x = match rng.below(3) {
+                let old = word(section, to);
+                let x = match rng.below(6) {
                     0 => word(section, at + 4 * rng.below(n as u32) as usize),
-                    1 => word(section, to) ^ 1 << (14 + 15 * rng.below(2)),
+                    1 => old ^ 1 << (14 + 15 * rng.below(2)),
+                    // A NULL tip on the left, or on the right of a WART slot.
+                    2 => old & !0x7FFF,
+                    3 => 2 << 30 | (old & 0x7FFF),
+                    // A field of offset 2, near, or far from a base of 0.
+                    4 => old & !(0x7FFF << 15) | (2 | rng.below(2) << 14) << 15,
                     _ => rng.below(u32::MAX),
                 };
                 section[to..to + 4].copy_from_slice(&x.to_le_bytes());
@@ -344,7 +464,7 @@ mod tip_bases_tests {
         }
         assert!(
             opened > 0 && refused > 0,
-            "{opened} opened, {refused} refused"
+            "{opened} opened, {refused} refused ({tip_bases})"
         );
     }
 }
