@@ -193,10 +193,7 @@ fn base_sections(choice: u8) -> Vec<crate::write::SectionBytes> {
     open(&bytes, &Limits::default())
         .expect("what we write opens")
         .sections
-        .sections
-        .iter()
-        .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
-        .collect()
+        .to_section_bytes()
 }
 
 /// The valid container [`container_forged`] starts from: bits 0–1 of `choice` the kind

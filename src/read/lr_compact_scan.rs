@@ -175,11 +175,9 @@ fn field_flags(p: u32, far_two: [u32; 2]) -> (u32, u16, u32) {
         let null = (f == plain::NULL_FIELD) as u32;
         fault |= null & if side == 0 { plain } else { wart };
         let two = (f == 2) as u32 | (f == far_two) as u32;
-        let redundant = (1 ^ wart) & two;
-        let is_canonical = (1 ^ null) & (1 ^ redundant) & plain;
-        let jumps = (redundant | wart) & plain;
+        let (slot, is_canonical) = slot_flags(plain, wart, null, two);
         canonical += is_canonical;
-        flags |= ((is_canonical * CANONICAL as u32) | (jumps * JUMPS as u32)) << (8 * side);
+        flags |= slot << (8 * side);
     }
     (fault, flags as u16, canonical)
 }
@@ -207,13 +205,26 @@ fn plain_flags<const BASES: bool>(v: u32, p: u32, m: u32, base: [i32; 2]) -> (u3
         } else {
             vertex | (null & (1 ^ wart))
         };
-        let redundant = (1 ^ wart) & (1 ^ null) & (d == 2) as u32;
-        let is_canonical = (1 ^ null) & (1 ^ redundant) & plain;
-        let jumps = (redundant | wart) & plain;
+        let two = (1 ^ null) & (d == 2) as u32;
+        let (slot, is_canonical) = slot_flags(plain, wart, null, two);
         canonical += is_canonical;
-        flags |= ((is_canonical * CANONICAL as u32) | (jumps * JUMPS as u32)) << (8 * side);
+        flags |= slot << (8 * side);
     }
     (plain & (1 ^ ok), flags as u16, canonical)
+}
+
+/// The flags byte of a slot of a plain pair ([`ring_slot_flags`]'s) and whether it is
+/// canonical, from 0-or-1 words: the pair is `plain`, the slot has WART, its tip is `NULL`,
+/// its tip is `v.n.n` (`two`, never with `null`; a redundant T2 copy unless WART).
+#[inline(always)]
+fn slot_flags(plain: u32, wart: u32, null: u32, two: u32) -> (u32, u32) {
+    let redundant = (1 ^ wart) & two;
+    let is_canonical = (1 ^ null) & (1 ^ redundant) & plain;
+    let jumps = (redundant | wart) & plain;
+    (
+        (is_canonical * CANONICAL as u32) | (jumps * JUMPS as u32),
+        is_canonical,
+    )
 }
 
 /// [V35] on the extended pairs, in ring order: records tile `RECORDS`, each block's record
@@ -370,13 +381,10 @@ mod tip_bases_tests {
             ..EncodeOptions::default()
         };
         let bytes = encode(&mesh, &options).expect("a generated mesh encodes");
-        let sections: Vec<_> = open(&bytes, &Limits::default())
+        let sections = open(&bytes, &Limits::default())
             .expect("what we write opens")
             .sections
-            .sections
-            .iter()
-            .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
-            .collect();
+            .to_section_bytes();
         let k = sections
             .iter()
             .position(|s| s.0 == Tag::LRBE)

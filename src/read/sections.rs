@@ -220,6 +220,15 @@ impl<'a> Sections<'a> {
         self.sections.iter().find(|s| s.tag == tag)
     }
 
+    /// The sections as `(tag, flags, payload)`, in file order, to change and
+    /// [`assemble`](crate::write::assemble) again.
+    pub fn to_section_bytes(&self) -> Vec<crate::write::SectionBytes> {
+        self.sections
+            .iter()
+            .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
+            .collect()
+    }
+
     /// The section with `tag`, which rule V39 requires.
     pub(crate) fn required(&self, tag: Tag) -> Result<Section<'a>> {
         self.section(tag)

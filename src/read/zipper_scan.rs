@@ -290,13 +290,10 @@ mod multi_block_tests {
             ..EncodeOptions::default()
         };
         let bytes = encode(&mesh, &options).expect("a generated mesh encodes");
-        let sections: Vec<_> = open(&bytes, &Limits::default())
+        let sections = open(&bytes, &Limits::default())
             .expect("what we write opens")
             .sections
-            .sections
-            .iter()
-            .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
-            .collect();
+            .to_section_bytes();
         let z = sections
             .iter()
             .position(|s| s.0 == Tag::ZIPR)

@@ -255,10 +255,7 @@ pub fn assert_same_up_to_rotation(got: &[[u32; 3]], want: &[[u32; 3]], what: &st
 pub fn sections_of(bytes: &[u8]) -> Vec<lrmesh::write::SectionBytes> {
     lrmesh::read::Sections::parse(bytes, &lrmesh::read::Limits::default())
         .unwrap()
-        .sections
-        .iter()
-        .map(|s| (s.tag, s.flags, s.bytes.to_vec()))
-        .collect()
+        .to_section_bytes()
 }
 
 /// Forges section `tag` of the container `bytes`: every little-endian field of `width` bytes

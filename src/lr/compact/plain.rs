@@ -73,14 +73,19 @@ pub fn field(tip: u32, v: u32, right: bool, base: Option<i32>) -> Option<u32> {
     if tip == NULL {
         return right.then_some(NULL_FIELD);
     }
-    let d = tip as i64 - v as i64;
+    offset_field(tip as i64 - v as i64, base)
+}
+
+/// The field holding a tip at offset `d` (not `NULL`: never 0) from its ring vertex, if it
+/// fits: near when it can, else far from `base`.
+pub fn offset_field(d: i64, base: Option<i32>) -> Option<u32> {
     let Some(base) = base else {
         return (d != 0 && (-SHORT_MAX - 1..=SHORT_MAX).contains(&d)).then_some(d as u32 & 0x7FFF);
     };
     if d != 0 && (NEAR_MIN..=NEAR_MAX).contains(&d) {
         return Some(d as u32 & 0x3FFF);
     }
-    let e = d - base as i64;
+    let e = d.saturating_sub(base as i64);
     (NEAR_MIN..=NEAR_MAX)
         .contains(&e)
         .then_some(FAR | e as u32 & 0x3FFF)
@@ -115,16 +120,7 @@ pub fn choose_base(offsets: impl Iterator<Item = i64>) -> i32 {
 /// tip, which always fits; `i64::MAX` for one that never does): without tip bases, and with
 /// the bases [`choose_base`] gives each block of `block` vertices.
 pub fn long_pairs(offsets: &[[i64; 2]], block: usize) -> [u64; 2] {
-    let fits = |d: i64, base: Option<i32>| {
-        d == 0
-            || match base {
-                None => (-SHORT_MAX - 1..=SHORT_MAX).contains(&d),
-                Some(base) => {
-                    (NEAR_MIN..=NEAR_MAX).contains(&d)
-                        || (NEAR_MIN..=NEAR_MAX).contains(&(d.saturating_sub(base as i64)))
-                }
-            }
-    };
+    let fits = |d: i64, base: Option<i32>| d == 0 || offset_field(d, base).is_some();
     let mut long = [0u64; 2];
     for chunk in offsets.chunks(block.max(1)) {
         let bases = [0, 1].map(|side| {

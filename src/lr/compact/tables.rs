@@ -315,7 +315,7 @@ impl<W: Words, U: Units> LrLayout for CompactTables<W, U> {
     fn tip(&self, v: u32, side: usize) -> u32 {
         let p = self.pair(v);
         if p >> 30 != EXTENDED {
-            let base = || self.bases.at(2 * (v >> BLOCK_SHIFT) as usize + side) as i32;
+            let base = || self.base(v, side).unwrap_or(0);
             return plain::tip(v, p >> (15 * side), self.tip_bases, base);
         }
         if side == LEFT {
