@@ -210,7 +210,7 @@ fn chains_clear(
     let stored = slot.stored();
     let whole_block = (0..2).all(|side| {
         let d = decrement(LEFT_SLOTS << side);
-        let clear = |b: u32| (b < m) & (b >= d) & ((b < nn_low) | (b - d > nn_high));
+        let clear = |b: u32| (b < m) & (b >= d) & ((b < nn_low) | (b.wrapping_sub(d) > nn_high));
         clear(t.chain_head(block, side))
             && Bits128(stored & LEFT_SLOTS << side).all(|bit| clear(chained[bit]))
     });
@@ -247,7 +247,9 @@ fn runs_clear(
                 let clear = run == 0 || {
                     let d = decrement(run);
                     let (first, last) = (run.trailing_zeros(), 127 - run.leading_zeros());
-                    (b < m) & (b >= d) & ((b < nn[first as usize]) | (b - d > nn[last as usize]))
+                    (b < m)
+                        & (b >= d)
+                        & ((b < nn[first as usize]) | (b.wrapping_sub(d) > nn[last as usize]))
                 };
                 if end < 128 {
                     (b, from) = (chained[end], end);
