@@ -4,7 +4,7 @@
 
 use super::fields::Fields;
 use super::lr_rules::{
-    check_rings, check_vertex_corners, ring_slot_flags, verified_boundaries, SlotMap,
+    check_rings, check_vertex_corners, ring_slot_flags, verified_boundaries, SlotMap, CANONICAL,
 };
 use super::zipper_scan::{block_symbols, scan_slots, tip_word_holds};
 use super::Sections;
@@ -162,8 +162,8 @@ pub(super) fn zipper_tables<'a>(
         check_slots(&tables, &word_err).ok().as_ref(),
         "the fast pass and the slot loop agree"
     );
-    let flags = match fast {
-        Some(flags) => flags,
+    let (flags, canonical) = match fast {
+        Some(found) => found,
         None => check_slots(&tables, &word_err)?,
     };
     // [V59] T0 rows.
@@ -219,7 +219,7 @@ pub(super) fn zipper_tables<'a>(
 
     // [V60] C, the stored opposites and the explicit T0 opposites are corners; then the LR
     // rules every layout keeps (V19; V21–V23, V38 and V53 when verifying).
-    let slots = SlotMap::with_flags(flags, m_r, n0);
+    let slots = SlotMap::with_counted_flags(flags, canonical, m_r, n0);
     let corner_ok = |x: u32| x == NONE || slots.is_corner(x);
     let corner_arrays = [
         (C, &tables.c),
@@ -281,12 +281,12 @@ pub(super) fn zipper_tables<'a>(
 /// below `m`; record word 1 says what it stores as FORMAT.md §3.5e allows, the pairs used
 /// once each in order; every slot's tip is below `m` (`NULL` only in a right slot of symbol
 /// 5); every exception word, record and pair is used. Returns the flags of every slot for
-/// [`SlotMap`], found in the same pass. Slot by slot, so that the first fault is named: the
+/// [`SlotMap`], found in the same pass, and the number of canonical ones. Slot by slot, so that the first fault is named: the
 /// reader runs it when the fast pass (`scan_slots`) has found one.
 fn check_slots(
     t: &ZipperTables<LeWords>,
     word_err: &impl Fn(usize, usize, Rule, String) -> crate::Error,
-) -> Result<Vec<u8>> {
+) -> Result<(Vec<u8>, u64)> {
     let (m, m_r) = (t.m, t.m_r);
     let mut flags = Vec::with_capacity(2 * m_r as usize);
     let (mut exceptions, mut records, mut pairs) = (0usize, 0usize, 0usize);
@@ -442,5 +442,6 @@ fn check_slots(
             ));
         }
     }
-    Ok(flags)
+    let canonical = flags.iter().map(|&f| (f & CANONICAL) as u64).sum();
+    Ok((flags, canonical))
 }

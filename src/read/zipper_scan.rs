@@ -5,7 +5,7 @@
 //! the rest of the pass). It only says whether the rule holds: when it does not, the
 //! reader's slot-by-slot loop (`check_slots`) finds the first fault and names it.
 
-use super::lr_rules::{slot_flags, BitsSet};
+use super::lr_rules::{slot_flags, BitsSet, CANONICAL};
 use crate::lr::zipper::{
     Slot, BLOCK_SHIFT, DELTAS, EXCEPTION, IRREGULAR_SLOT, LEFT_SLOTS, NEXT_NEXT_OR_NULL, PREVIOUS,
     RECORD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
@@ -264,8 +264,9 @@ fn below(k: usize) -> u128 {
     u128::MAX.checked_shr(128 - k as u32).unwrap_or(0)
 }
 
-/// [V58] on every slot, and the slot flags, in slot order; `None` when the rule fails.
-pub(super) fn scan_slots(t: &Tables) -> Option<Vec<u8>> {
+/// [V58] on every slot, and the slot flags, in slot order, with the number of canonical ones;
+/// `None` when the rule fails.
+pub(super) fn scan_slots(t: &Tables) -> Option<(Vec<u8>, u64)> {
     let (m, m_r) = (t.m, t.m_r);
     // The exception and record words decoded once, in order, for both checks (the lists may
     // be bit fields: a field read in the slot loop kept its step from being inlined).
@@ -279,14 +280,16 @@ pub(super) fn scan_slots(t: &Tables) -> Option<Vec<u8>> {
     let exception = |i: usize| exception_words.get(i).copied().unwrap_or(0);
     let record = |i: usize| record_words.get(RECORD_WORDS * i).copied().unwrap_or(0);
     let wart_deltas = t.wart_deltas as u8;
-    let mut flags = vec![0u8; 2 * m_r as usize];
+    // Filled block by block: zeroing it first would write every byte twice.
+    let mut flags = Vec::with_capacity(2 * m_r as usize);
+    let mut canonical = 0u64;
     let (mut exceptions, mut records) = (0usize, 0usize);
     let mut bad = false;
-    for (block, block_flags) in flags.chunks_mut(2 << BLOCK_SHIFT).enumerate() {
+    for block in 0..(m_r as usize).div_ceil(1 << BLOCK_SHIFT) {
         bad |= [0, 1].map(|k| t.before_block(block, k)) != [exceptions, records];
         let first = (block << BLOCK_SHIFT) as u32;
         let slot = t.block_planes(block);
-        let used = block_flags.len();
+        let used = 2 * ((m_r - first) as usize).min(1 << BLOCK_SHIFT);
         let beyond = if used == 128 { 0 } else { u128::MAX << used };
         bad |= slot.p.iter().any(|p| p & beyond != 0);
         let symbols = block_symbols(&slot);
@@ -350,10 +353,15 @@ pub(super) fn scan_slots(t: &Tables) -> Option<Vec<u8>> {
             let is_next_next = (from_chain[bit] & chained_next_next[bit]) | next_next[bit];
             all_flags[bit] = slot_flags(is_next_next, 1 ^ null[bit], wart[bit], irregular[bit]);
         }
-        block_flags.copy_from_slice(&all_flags[..used]);
+        flags.extend_from_slice(&all_flags[..used]);
+        // At most 128 a block: byte lanes hold the sum.
+        let block_canonical = all_flags[..used]
+            .iter()
+            .fold(0u8, |sum, &f| sum + (f & CANONICAL));
+        canonical += block_canonical as u64;
     }
     bad |= (exceptions != exception_count) | (records != record_count);
-    (!bad).then_some(flags)
+    (!bad).then_some((flags, canonical))
 }
 
 #[cfg(all(test, feature = "fuzz-checks"))]
