@@ -100,15 +100,20 @@ pub(super) fn ring_slot_flags(tip: u32, wart: u32, irregular: u32, nn: u32) -> u
     (canonical as u8 * CANONICAL) | ((redundant | wart) as u8 * JUMPS)
 }
 
-/// [`ring_slot_flags`] in byte lanes, from whether the tip is `v.n.n` and whether it is not
-/// `NULL`, and the WART and IRREGULAR flags (each 0 or 1), so that a pass can find what the
-/// tips are in 32-bit lanes and the flags in bytes. (The passes in 32-bit lanes keep
-/// `ring_slot_flags`: through bytes they took more instructions.)
+/// [`ring_slot_flags`] of many slots at once, one bit each (bit `k` of every mask for slot
+/// `k`): from whether the tip is `v.n.n` and whether it is not `NULL`, and the WART and
+/// IRREGULAR flags, the slots whose flags have [`CANONICAL`] and those with [`JUMPS`], so
+/// that a pass over a block of slots takes them from bit planes without a loop per slot.
 #[inline(always)]
-pub(super) fn slot_flags(next_next: u8, not_null: u8, wart: u8, irregular: u8) -> u8 {
-    let redundant = (1 ^ wart) & (1 ^ irregular) & next_next;
-    let canonical = irregular | (not_null & (1 ^ redundant));
-    (canonical * CANONICAL) | ((redundant | wart) * JUMPS)
+pub(super) fn slot_flag_masks(
+    next_next: u128,
+    not_null: u128,
+    wart: u128,
+    irregular: u128,
+) -> (u128, u128) {
+    let redundant = !wart & !irregular & next_next;
+    let canonical = irregular | (not_null & !redundant);
+    (canonical, redundant | wart)
 }
 
 /// `v.n.n` for ring vertex `v` when the ring is the only one, of `m_r` vertices: `v + 2`,
@@ -360,20 +365,24 @@ impl Iterator for BitsSet {
 mod tests {
     use super::*;
 
-    /// The byte-lane flags are the 32-bit ones, for every kind of tip and flag.
+    /// The flags as bit masks are the 32-bit ones, for every kind of tip and flag.
     #[test]
-    fn slot_flags_in_bytes_are_ring_slot_flags() {
+    fn slot_flag_masks_are_ring_slot_flags() {
         let nn = 7;
         for tip in [nn, NULL, 3, 0] {
             for wart in 0..2 {
                 for irregular in 0..2 {
+                    let bit = |x: bool| (x as u128) << 77;
+                    let (canonical, jumps) = slot_flag_masks(
+                        bit(tip == nn),
+                        bit(tip != NULL),
+                        bit(wart == 1),
+                        bit(irregular == 1),
+                    );
+                    let flags =
+                        ((canonical >> 77) as u8 * CANONICAL) | ((jumps >> 77) as u8 * JUMPS);
                     assert_eq!(
-                        slot_flags(
-                            (tip == nn) as u8,
-                            (tip != NULL) as u8,
-                            wart as u8,
-                            irregular as u8
-                        ),
+                        flags,
                         ring_slot_flags(tip, wart, irregular, nn),
                         "tip {tip}, wart {wart}, irregular {irregular}"
                     );

@@ -1,14 +1,16 @@
 //! The well-formed open's fast path over the Zipper's slots (rule V58, and the slot flags of
 //! [`SlotMap`](super::lr_rules::SlotMap)): the exception and record words in linear passes
-//! of their own, then every slot without a branch on its symbol (the symbols follow no
-//! pattern a branch predictor could learn: a mispredicted branch per slot cost more than
-//! the rest of the pass). It only says whether the rule holds: when it does not, the
-//! reader's slot-by-slot loop (`check_slots`) finds the first fault and names it.
+//! of their own, then block by block, the slots' flags as bit masks of the block's symbol
+//! planes, with no branch on a symbol (the symbols follow no pattern a branch predictor
+//! could learn: a mispredicted branch per slot cost more than the rest of the pass) and the
+//! chains decoded only where a range test cannot clear them. It only says whether the rule
+//! holds: when it does not, the reader's slot-by-slot loop (`check_slots`) finds the first
+//! fault and names it.
 
-use super::lr_rules::{slot_flags, BitsSet, CANONICAL};
+use super::lr_rules::{slot_flag_masks, BitsSet, CANONICAL, JUMPS};
 use crate::lr::zipper::{
-    Slot, BLOCK_SHIFT, DELTAS, EXCEPTION, IRREGULAR_SLOT, LEFT_SLOTS, NEXT_NEXT_OR_NULL, PREVIOUS,
-    RECORD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
+    Slot, BLOCK_SHIFT, DELTAS, LEFT_SLOTS, PREVIOUS, RECORD_WORDS, STATE_SHIFT, STORES_BOTH,
+    STORES_FIRST, STORES_NONE, STORES_SECOND,
 };
 use crate::lr::{LrLayout, ZipperTables, VALUE, WART};
 use crate::words::{LeWords, Words};
@@ -96,21 +98,23 @@ fn words_hold(t: &Tables, m: u32, exceptions: &[u32], records: &[u32]) -> bool {
         && 2 * pairs == t.pairs.count()
 }
 
-/// What the slots of one block need of the ring: for each slot, `v.n.n` and the symbol on its
-/// side of `v.n`. Arithmetic (`v + 2`, the slot two bits on) except
-/// at the block's last vertex and next to a ring's end, found from the ring-end bits.
+/// What the slots of one block need of the ring: for each slot, `v.n.n`, and whether the
+/// slot on its side of `v.n` has symbol 4 (a canonical T2). Arithmetic (`v + 2`, the slot
+/// two bits on) except at the block's last vertex and next to a ring's end, found from the
+/// ring-end bits.
 struct Neighbours {
     nn: [u32; 128],
-    next_symbols: [u8; 128],
+    next_is_t2: u128,
 }
 
 impl Neighbours {
-    fn of_block(t: &Tables, first: u32, used: usize, symbols: &[u8; 128]) -> Neighbours {
+    fn of_block(t: &Tables, first: u32, used: usize, slot: &Slot) -> Neighbours {
+        let [p0, p1, p2] = slot.p;
+        let t2 = !p0 & !p1 & p2;
         let mut n = Neighbours {
             nn: std::array::from_fn(|bit| first + bit as u32 / 2 + 2),
-            next_symbols: [0; 128],
+            next_is_t2: t2 >> 2,
         };
-        n.next_symbols[..126].copy_from_slice(&symbols[2..]);
         let count = used / 2;
         let ends = ring_ends(t, first, count);
         // A vertex that ends its ring, follows or precedes one that does, the block's first
@@ -122,11 +126,12 @@ impl Neighbours {
             for side in 0..2 {
                 let bit = 2 * k as usize + side;
                 n.nn[bit] = t.ring_next(next);
-                n.next_symbols[bit] = if next == v + 1 && bit + 2 < used {
-                    symbols[bit + 2]
+                let is_t2 = if next == v + 1 && bit + 2 < used {
+                    t2 >> (bit + 2) & 1 != 0
                 } else {
-                    t.symbol(next, side) as u8
+                    t.symbol(next, side) == PREVIOUS
                 };
+                n.next_is_t2 = n.next_is_t2 & !(1 << bit) | (is_t2 as u128) << bit;
             }
         }
         n
@@ -259,6 +264,16 @@ fn runs_clear(
     })
 }
 
+/// 128 bytes of 0 or 1 as the bits of a `u128`, eight at a time: a multiply moves byte
+/// `k`'s low bit of a `u64` to bit `56 + k`, every other product of the sum landing above
+/// bit 63 or below bit 56, each at a bit of its own (no carries).
+fn pack_bits(bytes: &[u8; 128]) -> u128 {
+    bytes.chunks_exact(8).rev().fold(0u128, |bits, eight| {
+        let x = u64::from_le_bytes(eight.try_into().expect("eight bytes"));
+        bits << 8 | (x.wrapping_mul(0x0102_0408_1020_4080) >> 56) as u128
+    })
+}
+
 /// The bits below bit `k` (all for `k` = 128).
 fn below(k: usize) -> u128 {
     u128::MAX.checked_shr(128 - k as u32).unwrap_or(0)
@@ -279,7 +294,6 @@ pub(super) fn scan_slots(t: &Tables) -> Option<(Vec<u8>, u64)> {
     // Word 0 in place of a word past the end: the counts below fail the scan then.
     let exception = |i: usize| exception_words.get(i).copied().unwrap_or(0);
     let record = |i: usize| record_words.get(RECORD_WORDS * i).copied().unwrap_or(0);
-    let wart_deltas = t.wart_deltas as u8;
     // Filled block by block: zeroing it first would write every byte twice.
     let mut flags = Vec::with_capacity(2 * m_r as usize);
     let mut canonical = 0u64;
@@ -292,73 +306,61 @@ pub(super) fn scan_slots(t: &Tables) -> Option<(Vec<u8>, u64)> {
         let used = 2 * ((m_r - first) as usize).min(1 << BLOCK_SHIFT);
         let beyond = if used == 128 { 0 } else { u128::MAX << used };
         bad |= slot.p.iter().any(|p| p & beyond != 0);
-        let symbols = block_symbols(&slot);
         // The chains: each side's tip decremented by its delta symbols and set by its
         // exception and irregular slots (a few in a hundred). First the stored words, in
-        // slot order (a list's words are used in that order), then each side's chain in
-        // runs between its stored slots, without a branch per slot.
+        // slot order (a list's words are used in that order).
         let stored = slot.stored();
         let mut chained = [0u32; 128];
-        let mut stored_wart = [0u8; 128];
+        let mut stored_wart = 0u128;
         for bit in Bits128(stored) {
-            let word = if symbols[bit] as u32 == EXCEPTION {
+            let word = if slot.exceptions() >> bit & 1 != 0 {
                 exceptions += 1;
                 exception(exceptions - 1)
             } else {
                 records += 1;
                 record(records - 1)
             };
-            stored_wart[bit] = (word & WART != 0) as u8;
+            stored_wart |= ((word & WART != 0) as u128) << bit;
             chained[bit] = word & VALUE;
         }
-        let n = Neighbours::of_block(t, first, used, &symbols);
-        // Per slot, whether its chained tip is `v.n.n`; a block whose chains provably reach
-        // neither outside the vertices nor one of its `v.n.n` (most) skips the chains.
-        let mut chained_next_next = [0u8; 128];
+        let n = Neighbours::of_block(t, first, used, &slot);
+        let [p0, p1, p2] = slot.p;
+        let (delta, rule_5, irregular) = (!p2, p0 & !p1 & p2, slot.irregular());
+        let from_chain = delta | stored;
+        // The slots whose chained tip is `v.n.n`. A block whose chains provably reach
+        // neither outside the vertices nor one of its `v.n.n` (most) skips the chains; the
+        // others chain each side in runs between its stored slots.
+        let mut chained_next_next = 0u128;
         if !chains_clear(t, &slot, block, &chained, &n.nn[..used], m) {
-            chain_block(t, block, used, &symbols, stored, &mut chained);
-            let mut block_bad = 0u32;
+            chain_block(t, block, used, &block_symbols(&slot), stored, &mut chained);
+            let mut outside = [0u8; 128];
+            let mut at_next_next = [0u8; 128];
             for bit in 0..128 {
-                let from_chain = (symbols[bit] < DELTAS as u8) | (symbols[bit] >= EXCEPTION as u8);
-                block_bad |= (chained[bit] >= m) as u32 & from_chain as u32;
-                chained_next_next[bit] = (chained[bit] == n.nn[bit]) as u8;
+                outside[bit] = (chained[bit] >= m) as u8;
+                at_next_next[bit] = (chained[bit] == n.nn[bit]) as u8;
             }
-            bad |= block_bad != 0;
+            bad |= pack_bits(&outside) & from_chain & below(used) != 0;
+            chained_next_next = pack_bits(&at_next_next);
         }
-        // Every slot's flags, without a branch, over the whole block (slots past the last
-        // ring vertex have symbol 0), in loops that vectorize: what the symbols say in byte
-        // lanes, then the flags. A ring rule's tip is `v.p` (a vertex, never `v.n.n` on a
-        // ring of 4 or more, V16), `v.n.n` or `NULL`.
-        let mut from_chain = [0u8; 128];
-        let mut next_next = [0u8; 128];
-        let mut null = [0u8; 128];
-        let mut wart = [0u8; 128];
-        let mut irregular = [0u8; 128];
-        for bit in 0..128 {
-            let s = symbols[bit];
-            let before_t2 = wart_deltas & (n.next_symbols[bit] == PREVIOUS as u8) as u8;
-            let delta = (s < DELTAS as u8) as u8;
-            let is_stored = (s >= EXCEPTION as u8) as u8;
-            let rule_5 = (s == NEXT_NEXT_OR_NULL as u8) as u8;
-            from_chain[bit] = delta | is_stored;
-            null[bit] = rule_5 & (bit as u8 & 1) & (1 ^ before_t2);
-            next_next[bit] = rule_5 & (1 ^ null[bit]);
-            // `stored_wart` is 0 but at stored slots.
-            wart[bit] = (delta & before_t2) | stored_wart[bit];
-            irregular[bit] = (s == IRREGULAR_SLOT as u8) as u8;
-        }
+        // Every slot's flags at once, as bit masks (`slot_flags` on each bit). A chained
+        // tip in range is never `NULL`; a ring rule's tip is `v.p` (a vertex, never `v.n.n`
+        // on a ring of 4 or more, V16), `v.n.n` or `NULL` (symbol 5, on the right unless the
+        // slot is a wart's).
+        let before_t2 = if t.wart_deltas { n.next_is_t2 } else { 0 };
+        let null = rule_5 & LEFT_SLOTS << 1 & !before_t2;
+        let next_next = (from_chain & chained_next_next) | (rule_5 & !null);
+        let wart = (delta & before_t2) | stored_wart;
+        let (block_canonical, jumps) = slot_flag_masks(next_next, !null, wart, irregular);
+        let block_canonical = block_canonical & below(used);
+        let (canonical_bytes, jumps_bytes) = (block_canonical.to_le_bytes(), jumps.to_le_bytes());
         let mut all_flags = [0u8; 128];
-        for bit in 0..128 {
-            // A chained tip in range is neither NULL nor, when it fails, used.
-            let is_next_next = (from_chain[bit] & chained_next_next[bit]) | next_next[bit];
-            all_flags[bit] = slot_flags(is_next_next, 1 ^ null[bit], wart[bit], irregular[bit]);
+        for (i, eight) in all_flags.chunks_exact_mut(8).enumerate() {
+            let spread = (SPREAD[canonical_bytes[i] as usize] * CANONICAL as u64)
+                | (SPREAD[jumps_bytes[i] as usize] * JUMPS as u64);
+            eight.copy_from_slice(&spread.to_le_bytes());
         }
         flags.extend_from_slice(&all_flags[..used]);
-        // At most 128 a block: byte lanes hold the sum.
-        let block_canonical = all_flags[..used]
-            .iter()
-            .fold(0u8, |sum, &f| sum + (f & CANONICAL));
-        canonical += block_canonical as u64;
+        canonical += block_canonical.count_ones() as u64;
     }
     bad |= (exceptions != exception_count) | (records != record_count);
     (!bad).then_some((flags, canonical))
@@ -512,12 +514,22 @@ mod multi_block_tests {
         let slot = t.block_planes(block);
         let first = (block << BLOCK_SHIFT) as u32;
         let used = 2 * ((t.m_r - first) as usize).min(1 << BLOCK_SHIFT);
-        let symbols = super::block_symbols(&slot);
         let mut chained = [0u32; 128];
         for bit in super::Bits128(slot.stored()) {
             chained[bit] = t.tip(first + bit as u32 / 2, bit % 2);
         }
-        let n = super::Neighbours::of_block(t, first, used, &symbols);
+        let n = super::Neighbours::of_block(t, first, used, &slot);
         super::chains_clear(t, &slot, block, &chained, &n.nn[..used], t.m)
+    }
+
+    /// `pack_bits` is the inverse of spreading bits over bytes, on random patterns.
+    #[test]
+    fn pack_bits_gathers_the_low_bit_of_every_byte() {
+        let mut rng = Rng::new(27);
+        for _ in 0..1000 {
+            let bits = (rng.next_u64() as u128) << 64 | rng.next_u64() as u128;
+            let bytes: [u8; 128] = std::array::from_fn(|k| (bits >> k & 1) as u8);
+            assert_eq!(super::pack_bits(&bytes), bits);
+        }
     }
 }
