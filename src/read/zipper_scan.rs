@@ -98,43 +98,69 @@ fn words_hold(t: &Tables, m: u32, exceptions: &[u32], records: &[u32]) -> bool {
         && 2 * pairs == t.pairs.count()
 }
 
-/// What the slots of one block need of the ring: for each slot, `v.n.n`, and whether the
-/// slot on its side of `v.n` has symbol 4 (a canonical T2). Arithmetic (`v + 2`, the slot
-/// two bits on) except at the block's last vertex and next to a ring's end, found from the
-/// ring-end bits.
+/// What the slots of one block need of the ring: whether the slot on its side of `v.n` has
+/// symbol 4 (a canonical T2), and the range of the slots' `v.n.n` ([`Neighbours::nn`] gives
+/// each). Arithmetic (`v + 2`, the slot two bits on) except at *special* vertices: the
+/// block's first and last and those next to a ring's end, found from the ring-end bits.
 struct Neighbours {
-    nn: [u32; 128],
+    first: u32,
+    /// The special vertices, bit `k` for vertex `first + k`.
+    special: u64,
+    /// Bit `2k + side`: the slot on `side` of vertex `first + k`'s next has symbol 4.
     next_is_t2: u128,
+    /// The least and the greatest `v.n.n` of the block's vertices.
+    nn_low: u32,
+    nn_high: u32,
 }
 
 impl Neighbours {
     fn of_block(t: &Tables, first: u32, used: usize, slot: &Slot) -> Neighbours {
         let [p0, p1, p2] = slot.p;
         let t2 = !p0 & !p1 & p2;
-        let mut n = Neighbours {
-            nn: std::array::from_fn(|bit| first + bit as u32 / 2 + 2),
-            next_is_t2: t2 >> 2,
-        };
         let count = used / 2;
         let ends = ring_ends(t, first, count);
         // A vertex that ends its ring, follows or precedes one that does, the block's first
         // (which may start a ring) and last.
-        let special = ends | ends >> 1 | ends << 1 | 1 | 1 << (count - 1);
-        for k in BitsSet(special & (u64::MAX >> (64 - count))) {
+        let special =
+            (ends | ends >> 1 | ends << 1 | 1 | 1 << (count - 1)) & (u64::MAX >> (64 - count));
+        // As two words: a `u128` shift by a variable amount per slot costs a branch.
+        let mut next_is_t2 = [(t2 >> 2) as u64, (t2 >> 66) as u64];
+        let (mut nn_low, mut nn_high) = (first + 2, first + count as u32 + 1);
+        for k in BitsSet(special) {
             let v = first + k;
             let next = t.ring_next(v);
+            let nn = t.ring_next(next);
+            (nn_low, nn_high) = (nn_low.min(nn), nn_high.max(nn));
             for side in 0..2 {
                 let bit = 2 * k as usize + side;
-                n.nn[bit] = t.ring_next(next);
                 let is_t2 = if next == v + 1 && bit + 2 < used {
                     t2 >> (bit + 2) & 1 != 0
                 } else {
                     t.symbol(next, side) == PREVIOUS
                 };
-                n.next_is_t2 = n.next_is_t2 & !(1 << bit) | (is_t2 as u128) << bit;
+                let (word, at) = (bit / 64, bit % 64);
+                next_is_t2[word] = next_is_t2[word] & !(1 << at) | (is_t2 as u64) << at;
             }
         }
-        n
+        Neighbours {
+            first,
+            special,
+            next_is_t2: next_is_t2[0] as u128 | (next_is_t2[1] as u128) << 64,
+            nn_low,
+            nn_high,
+        }
+    }
+
+    /// Every slot's `v.n.n` (slots past the used ones read `v + 2` of their place).
+    fn nn(&self, t: &Tables) -> [u32; 128] {
+        let mut nn: [u32; 128] = std::array::from_fn(|bit| self.first + bit as u32 / 2 + 2);
+        for k in BitsSet(self.special) {
+            let v = self.first + k;
+            let value = t.ring_next(t.ring_next(v));
+            nn[2 * k as usize] = value;
+            nn[2 * k as usize + 1] = value;
+        }
+        nn
     }
 }
 
@@ -202,29 +228,27 @@ fn chains_clear(
     slot: &Slot,
     block: usize,
     chained: &[u32; 128],
-    nn: &[u32],
+    n: &Neighbours,
     m: u32,
 ) -> bool {
-    let (nn_low, nn_high) = nn
-        .iter()
-        .fold((u32::MAX, 0), |(lo, hi), &x| (lo.min(x), hi.max(x)));
     let deltas = !slot.p[2];
     let decrement = |slots: u128| {
         (slot.p[0] & deltas & slots).count_ones() + 2 * (slot.p[1] & deltas & slots).count_ones()
     };
     let stored = slot.stored();
-    let whole_block = (0..2).all(|side| {
+    (0..2).all(|side| {
         let d = decrement(LEFT_SLOTS << side);
-        let clear = |b: u32| (b < m) & (b >= d) & ((b < nn_low) | (b.wrapping_sub(d) > nn_high));
+        let clear =
+            |b: u32| (b < m) & (b >= d) & ((b < n.nn_low) | (b.wrapping_sub(d) > n.nn_high));
         clear(t.chain_head(block, side))
             && Bits128(stored & LEFT_SLOTS << side).all(|bit| clear(chained[bit]))
-    });
-    whole_block || runs_clear(t, slot, block, chained, nn, m)
+    })
 }
 
-/// [`chains_clear`] run by run, for a block whose `v.n.n` increase along it (no ring ends
-/// there): a run's tips decrease while its slots' `v.n.n` increase, so the tips are all
-/// below or all above them when the first is below the first or the last above the last.
+/// [`chains_clear`] run by run (`nn`: each used slot's `v.n.n`), for a block whose `v.n.n`
+/// increase along it (no ring ends there): a run's tips decrease while its slots' `v.n.n`
+/// increase, so the tips are all below or all above them when the first is below the first
+/// or the last above the last.
 #[inline(never)]
 fn runs_clear(
     t: &Tables,
@@ -331,13 +355,18 @@ pub(super) fn scan_slots(t: &Tables) -> Option<(Vec<u8>, u64)> {
         // neither outside the vertices nor one of its `v.n.n` (most) skips the chains; the
         // others chain each side in runs between its stored slots.
         let mut chained_next_next = 0u128;
-        if !chains_clear(t, &slot, block, &chained, &n.nn[..used], m) {
+        let clear = chains_clear(t, &slot, block, &chained, &n, m) || {
+            let nn = n.nn(t);
+            runs_clear(t, &slot, block, &chained, &nn[..used], m)
+        };
+        if !clear {
+            let nn = n.nn(t);
             chain_block(t, block, used, &block_symbols(&slot), stored, &mut chained);
             let mut outside = [0u8; 128];
             let mut at_next_next = [0u8; 128];
             for bit in 0..128 {
                 outside[bit] = (chained[bit] >= m) as u8;
-                at_next_next[bit] = (chained[bit] == n.nn[bit]) as u8;
+                at_next_next[bit] = (chained[bit] == nn[bit]) as u8;
             }
             bad |= pack_bits(&outside) & from_chain & below(used) != 0;
             chained_next_next = pack_bits(&at_next_next);
@@ -519,7 +548,8 @@ mod multi_block_tests {
             chained[bit] = t.tip(first + bit as u32 / 2, bit % 2);
         }
         let n = super::Neighbours::of_block(t, first, used, &slot);
-        super::chains_clear(t, &slot, block, &chained, &n.nn[..used], t.m)
+        super::chains_clear(t, &slot, block, &chained, &n, t.m)
+            || super::runs_clear(t, &slot, block, &chained, &n.nn(t)[..used], t.m)
     }
 
     /// `pack_bits` is the inverse of spreading bits over bytes, on random patterns.
@@ -530,6 +560,48 @@ mod multi_block_tests {
             let bits = (rng.next_u64() as u128) << 64 | rng.next_u64() as u128;
             let bytes: [u8; 128] = std::array::from_fn(|k| (bits >> k & 1) as u8);
             assert_eq!(super::pack_bits(&bytes), bits);
+        }
+    }
+
+    /// `Neighbours`' range of `v.n.n` holds every slot's, the wrapped ones at a ring's end
+    /// included, on every block of files with one ring and with many (small components of
+    /// a few blocks each, and tiny ones, whose rings end inside blocks).
+    #[test]
+    fn the_range_of_next_next_holds_every_slots() {
+        let mut rng = Rng::new(28);
+        let (one_ring, _) = base(&mut rng);
+        let mut many = generate::torus(12, 10);
+        for (around, along) in [(30, 20), (4, 3), (5, 4), (24, 16), (3, 3)] {
+            generate::append(&mut many, &generate::torus(around, along));
+        }
+        let options = EncodeOptions {
+            connectivity: Connectivity::Zipper,
+            ..EncodeOptions::default()
+        };
+        let many = encode(&many, &options).expect("tori encode");
+        for bytes in [assemble(&one_ring), many] {
+            let view = open(&bytes, &Limits::default()).expect("what we write opens");
+            let t = view.zipper().expect("Zipper tables");
+            for block in 0..t.m_r.div_ceil(1 << BLOCK_SHIFT) as usize {
+                let first = (block << BLOCK_SHIFT) as u32;
+                let used = 2 * ((t.m_r - first) as usize).min(1 << BLOCK_SHIFT);
+                let n = super::Neighbours::of_block(t, first, used, &t.block_planes(block));
+                let nn = n.nn(t);
+                for (bit, &x) in nn[..used].iter().enumerate() {
+                    let v = first + bit as u32 / 2;
+                    assert_eq!(
+                        x,
+                        t.ring_next(t.ring_next(v)),
+                        "slot {bit} of block {block}"
+                    );
+                    assert!(
+                        (n.nn_low..=n.nn_high).contains(&x),
+                        "block {block}: {x} outside {}..={}",
+                        n.nn_low,
+                        n.nn_high
+                    );
+                }
+            }
         }
     }
 }
