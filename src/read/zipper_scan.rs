@@ -216,13 +216,12 @@ fn chain_block(
 }
 
 /// Whether every chained tip of the block (its delta and stored slots) is surely a vertex
-/// and none is its slot's `v.n.n` (`nn`, per used slot), without chaining. On each side a
-/// chain runs from a start `b` (the anchor, or a stored slot's word) and only decreases, by
-/// `d` over the run (its delta symbols' sum), so the run's tips lie in `[b − d, b]`: clear
-/// when that interval lies within `0 .. m` and misses the `v.n.n` of the run's slots. Most
-/// blocks pass at once, their tips on another turn of the ring; near a turn's end, where
-/// tips approach their own slots, the run's own `v.n.n` are compared (they increase along
-/// the run while its tips decrease, so its ends tell).
+/// and none is a `v.n.n` of the block, without chaining. On each side a chain runs from a
+/// start `b` (the anchor, or a stored slot's word) and only decreases, by at most `d`, the
+/// side's delta symbols' sum, so its tips lie in `[b − d, b]`: clear when each such interval
+/// lies within `0 .. m` and misses the block's range of `v.n.n` (`n`). Most blocks pass,
+/// their tips on another turn of the ring; near a turn's end, where tips come close to
+/// their own slots, [`runs_clear`] looks run by run.
 fn chains_clear(
     t: &Tables,
     slot: &Slot,
