@@ -362,7 +362,7 @@ mod tip_bases_tests {
     use crate::generate::{self, Rng};
     use crate::read::{open, Limits};
     use crate::words::Words;
-    use crate::write::{assemble, encode, Connectivity, EncodeOptions, SectionBytes};
+    use crate::write::{assemble, Connectivity, EncodeOptions, SectionBytes};
 
     /// A bit-efficient LR file of over 100 blocks, many far enough from the ring's ends for
     /// [`in_range_block`](super::in_range_block) (the forged files of the fuzz targets are
@@ -380,15 +380,7 @@ mod tip_bases_tests {
             tip_bases: Some(tip_bases),
             ..EncodeOptions::default()
         };
-        let bytes = encode(&mesh, &options).expect("a generated mesh encodes");
-        let sections = open(&bytes, &Limits::default())
-            .expect("what we write opens")
-            .sections
-            .to_section_bytes();
-        let k = sections
-            .iter()
-            .position(|s| s.0 == Tag::LRBE)
-            .expect("LRBE");
+        let (sections, k) = crate::read::encoded_sections(&mesh, &options, Tag::LRBE);
         let header = LrbeHeader::read(&sections[k].2);
         let layout = header.layout().expect("a layout");
         let at = |name| layout.array(name).start;

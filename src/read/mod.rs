@@ -110,6 +110,26 @@ pub fn open<'a>(bytes: &'a [u8], limits: &Limits) -> Result<Container<'a>> {
     Container::new(Sections::parse(bytes, limits)?, limits, false)
 }
 
+/// `mesh` encoded with `options`, as its sections `(tag, flags, payload)`, and the index of
+/// the one tagged `tag`: the file that the readers' fast-pass tests forge.
+#[cfg(test)]
+pub(crate) fn encoded_sections(
+    mesh: &crate::mesh::Mesh,
+    options: &crate::write::EncodeOptions,
+    tag: crate::format::Tag,
+) -> (Vec<crate::write::SectionBytes>, usize) {
+    let bytes = crate::write::encode(mesh, options).expect("a generated mesh encodes");
+    let sections = open(&bytes, &Limits::default())
+        .expect("what we write opens")
+        .sections
+        .to_section_bytes();
+    let at = sections
+        .iter()
+        .position(|s| s.0 == tag)
+        .unwrap_or_else(|| panic!("a {tag:?} section"));
+    (sections, at)
+}
+
 /// Reads `cases` containers of connectivity kind `kind` (bits 0–2 of the fuzz targets' first
 /// byte; the other bits, chosen from `seed`, pick the mesh and options) forged as the fuzz
 /// targets forge them: units copied over others (`operators`) or bytes overwritten

@@ -4,7 +4,7 @@
 
 use super::fields::Fields;
 use super::lr_rules::{
-    check_rings, check_vertex_corners, ring_slot_flags, verified_boundaries, SlotMap, CANONICAL,
+    check_rings, check_vertex_corners, ring_slot_flags, verified_boundaries, SlotMap,
 };
 use super::zipper_scan::{block_symbols, scan_slots, tip_word_holds};
 use super::Sections;
@@ -155,16 +155,22 @@ pub(super) fn zipper_tables<'a>(
 
     // [V58] symbols, heads, exceptions and records: a fast pass first; the slot at fault is
     // looked for only when it fails. Tests and fuzzing check that both passes agree.
-    let fast = scan_slots(&tables);
+    let fast = scan_slots(&tables)
+        .map(|(flags, canonical)| SlotMap::with_counted_flags(flags, canonical, m_r, n0));
     #[cfg(any(test, fuzzing))]
-    assert_eq!(
-        fast.as_ref(),
-        check_slots(&tables, &word_err).ok().as_ref(),
-        "the fast pass and the slot loop agree"
-    );
-    let (flags, canonical) = match fast {
-        Some(found) => found,
-        None => check_slots(&tables, &word_err)?,
+    {
+        let slow = check_slots(&tables, &word_err)
+            .ok()
+            .map(|flags| SlotMap::with_flags(flags, m_r, n0));
+        let agree = match (&fast, &slow) {
+            (Some(fast), Some(slow)) => fast.agrees_with(slow),
+            (fast, slow) => fast.is_none() && slow.is_none(),
+        };
+        assert!(agree, "the fast pass and the slot loop agree");
+    }
+    let slots = match fast {
+        Some(slots) => slots,
+        None => SlotMap::with_flags(check_slots(&tables, &word_err)?, m_r, n0),
     };
     // [V59] T0 rows.
     let n_explicit = tables.t0_explicit.count();
@@ -219,7 +225,6 @@ pub(super) fn zipper_tables<'a>(
 
     // [V60] C, the stored opposites and the explicit T0 opposites are corners; then the LR
     // rules every layout keeps (V19; V21–V23, V38 and V53 when verifying).
-    let slots = SlotMap::with_counted_flags(flags, canonical, m_r, n0);
     let corner_ok = |x: u32| x == NONE || slots.is_corner(x);
     let corner_arrays = [
         (C, &tables.c),
@@ -281,12 +286,12 @@ pub(super) fn zipper_tables<'a>(
 /// below `m`; record word 1 says what it stores as FORMAT.md §3.5e allows, the pairs used
 /// once each in order; every slot's tip is below `m` (`NULL` only in a right slot of symbol
 /// 5); every exception word, record and pair is used. Returns the flags of every slot for
-/// [`SlotMap`], found in the same pass, and the number of canonical ones. Slot by slot, so that the first fault is named: the
+/// [`SlotMap`], found in the same pass. Slot by slot, so that the first fault is named: the
 /// reader runs it when the fast pass (`scan_slots`) has found one.
 fn check_slots(
     t: &ZipperTables<LeWords>,
     word_err: &impl Fn(usize, usize, Rule, String) -> crate::Error,
-) -> Result<(Vec<u8>, u64)> {
+) -> Result<Vec<u8>> {
     let (m, m_r) = (t.m, t.m_r);
     let mut flags = Vec::with_capacity(2 * m_r as usize);
     let (mut exceptions, mut records, mut pairs) = (0usize, 0usize, 0usize);
@@ -442,6 +447,5 @@ fn check_slots(
             ));
         }
     }
-    let canonical = flags.iter().map(|&f| (f & CANONICAL) as u64).sum();
-    Ok((flags, canonical))
+    Ok(flags)
 }

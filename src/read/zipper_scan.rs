@@ -230,18 +230,25 @@ fn chains_clear(
     n: &Neighbours,
     m: u32,
 ) -> bool {
-    let deltas = !slot.p[2];
-    let decrement = |slots: u128| {
-        (slot.p[0] & deltas & slots).count_ones() + 2 * (slot.p[1] & deltas & slots).count_ones()
-    };
     let stored = slot.stored();
     (0..2).all(|side| {
-        let d = decrement(LEFT_SLOTS << side);
-        let clear =
-            |b: u32| (b < m) & (b >= d) & ((b < n.nn_low) | (b.wrapping_sub(d) > n.nn_high));
+        let d = decrement(slot, LEFT_SLOTS << side);
+        let clear = |b: u32| interval_clear(b, d, m, n.nn_low, n.nn_high);
         clear(t.chain_head(block, side))
             && Bits128(stored & LEFT_SLOTS << side).all(|bit| clear(chained[bit]))
     })
+}
+
+/// The sum of the delta symbols of `slots`: how far a chain decreases over them.
+fn decrement(slot: &Slot, slots: u128) -> u32 {
+    let deltas = !slot.p[2] & slots;
+    (slot.p[0] & deltas).count_ones() + 2 * (slot.p[1] & deltas).count_ones()
+}
+
+/// Whether tips in `[b − d, b]` are all vertices (below `m`, none below 0) and none lies in
+/// `[low, high]`. Bitwise, so that `b − d` is computed when `b < d` too, but never used.
+fn interval_clear(b: u32, d: u32, m: u32, low: u32, high: u32) -> bool {
+    (b < m) & (b >= d) & ((b < low) | (b.wrapping_sub(d) > high))
 }
 
 /// [`chains_clear`] run by run (`nn`: each used slot's `v.n.n`), for a block whose `v.n.n`
@@ -260,10 +267,6 @@ fn runs_clear(
     if !nn.windows(2).all(|w| w[0] <= w[1]) {
         return false;
     }
-    let deltas = !slot.p[2];
-    let decrement = |slots: u128| {
-        (slot.p[0] & deltas & slots).count_ones() + 2 * (slot.p[1] & deltas & slots).count_ones()
-    };
     let stored = slot.stored();
     (0..2).all(|side| {
         let mine = LEFT_SLOTS << side & below(nn.len());
@@ -273,11 +276,14 @@ fn runs_clear(
             .all(|end| {
                 let run = mine & !below(from) & below(end);
                 let clear = run == 0 || {
-                    let d = decrement(run);
                     let (first, last) = (run.trailing_zeros(), 127 - run.leading_zeros());
-                    (b < m)
-                        & (b >= d)
-                        & ((b < nn[first as usize]) | (b.wrapping_sub(d) > nn[last as usize]))
+                    interval_clear(
+                        b,
+                        decrement(slot, run),
+                        m,
+                        nn[first as usize],
+                        nn[last as usize],
+                    )
                 };
                 if end < 128 {
                     (b, from) = (chained[end], end);

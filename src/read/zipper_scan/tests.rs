@@ -6,7 +6,7 @@ use crate::format::Tag;
 use crate::generate::{self, Rng};
 use crate::lr::zipper::{BLOCK_SHIFT, SHORT_HEAD_WORDS};
 use crate::lr::LrLayout;
-use crate::read::{open, Limits};
+use crate::read::{open, Container, Limits};
 use crate::write::{assemble, encode, Connectivity, EncodeOptions, SectionBytes};
 
 /// 1,500 Zipper files forged (see [`read_forged_files`]): under `cfg(test)`
@@ -30,16 +30,29 @@ fn base(rng: &mut Rng) -> (Vec<SectionBytes>, usize) {
         connectivity: Connectivity::Zipper,
         ..EncodeOptions::default()
     };
-    let bytes = encode(&mesh, &options).expect("a generated mesh encodes");
-    let sections = open(&bytes, &Limits::default())
-        .expect("what we write opens")
-        .sections
-        .to_section_bytes();
-    let z = sections
-        .iter()
-        .position(|s| s.0 == Tag::ZIPR)
-        .expect("a ZIPR section");
-    (sections, z)
+    crate::read::encoded_sections(&mesh, &options, Tag::ZIPR)
+}
+
+/// Where the heads of `ZIPR` (section `z` of `view`) start in the section.
+fn heads_at(view: &Container, z: usize) -> usize {
+    let t = view.zipper().expect("Zipper tables");
+    assert!(t.short_heads(), "the writer's heads are short");
+    t.heads.0.as_ptr() as usize - view.sections.sections[z].bytes.as_ptr() as usize
+}
+
+/// Opens `base` with the chain anchor of `side` in `block` set to `offset` from the block's
+/// first vertex (short heads, whose words start at `heads_at` in `ZIPR`, section `z`).
+fn open_with_anchor(
+    base: &[SectionBytes],
+    (z, heads_at): (usize, usize),
+    block: usize,
+    side: usize,
+    offset: i16,
+) -> bool {
+    let at = heads_at + 4 * SHORT_HEAD_WORDS * block + 2 * side;
+    let mut sections = base.to_vec();
+    sections[z].2[at..at + 2].copy_from_slice(&offset.to_le_bytes());
+    open(&assemble(&sections), &Limits::default()).is_ok()
 }
 
 /// Units of `ZIPR` copied over others: under `cfg(test)` `open` runs this fast pass and
@@ -78,20 +91,15 @@ fn the_fast_pass_and_the_slot_loop_agree_at_the_edge_of_the_range() {
     let (base, z) = base(&mut Rng::new(25));
     let bytes = assemble(&base);
     let view = open(&bytes, &Limits::default()).expect("what we write opens");
+    let section = (z, heads_at(&view, z));
     let t = view.zipper().expect("Zipper tables");
-    assert!(t.short_heads(), "the writer's heads are short");
-    let section = view.sections.sections[z].bytes;
-    let heads_at = t.heads.0.as_ptr() as usize - section.as_ptr() as usize;
     let (m, blocks) = (t.m, t.m_r.div_ceil(1 << BLOCK_SHIFT));
     let mut refused = 0;
     for block in 0..blocks {
         let first = block << BLOCK_SHIFT;
         for (side, d) in (0..2).flat_map(|side| (0..4).map(move |d| (side, d))) {
-            let anchor_offset = (m + d - first) as i16;
-            let at = heads_at + 4 * SHORT_HEAD_WORDS * block as usize + 2 * side;
-            let mut sections = base.clone();
-            sections[z].2[at..at + 2].copy_from_slice(&anchor_offset.to_le_bytes());
-            refused += open(&assemble(&sections), &Limits::default()).is_err() as usize;
+            let offset = (m + d - first) as i16;
+            refused += !open_with_anchor(&base, section, block as usize, side, offset) as usize;
         }
     }
     assert!(refused > 0, "no chain reached m");
@@ -107,9 +115,8 @@ fn the_fast_pass_and_the_slot_loop_agree_where_chains_meet_their_slots() {
     let (base, z) = base(&mut Rng::new(26));
     let bytes = assemble(&base);
     let view = open(&bytes, &Limits::default()).expect("what we write opens");
+    let section = (z, heads_at(&view, z));
     let t = view.zipper().expect("Zipper tables");
-    let section = view.sections.sections[z].bytes;
-    let heads_at = t.heads.0.as_ptr() as usize - section.as_ptr() as usize;
     let blocks = t.m_r.div_ceil(1 << BLOCK_SHIFT) as usize;
     let clear = (0..blocks)
         .filter(|&block| block_is_clear(t, block))
@@ -126,12 +133,9 @@ fn the_fast_pass_and_the_slot_loop_agree_where_chains_meet_their_slots() {
         for (side, offset) in
             (0..2).flat_map(|side| near_own.clone().chain(near_zero).map(move |d| (side, d)))
         {
-            let at = heads_at + 4 * SHORT_HEAD_WORDS * block + 2 * side;
-            let mut sections = base.clone();
-            sections[z].2[at..at + 2].copy_from_slice(&(offset as i16).to_le_bytes());
-            match open(&assemble(&sections), &Limits::default()) {
-                Ok(_) => opened += 1,
-                Err(_) => refused += 1,
+            match open_with_anchor(&base, section, block, side, offset as i16) {
+                true => opened += 1,
+                false => refused += 1,
             }
         }
     }
