@@ -322,26 +322,30 @@ fn v45_widths() {
                 + (b.start_bits + 3 * b.anchor_bits + (3 * l + k) * b.width_bits) as u64;
             geom + b.dir_at() as u64 + bit / 8
         };
-        let bad = forge_blocked(&bytes, |b| {
-            b.widths[1][2][1] = max + 1;
-            b.retile();
-        });
-        breaks(
-            &bad,
-            45,
-            "GEOM",
-            width_at(1, 2, 1),
-            &format!("more than {max}"),
-        );
-        let end = b.starts.len() - 1;
-        let bad = forge_blocked(&bytes, |b| b.widths[end][0][2] = 1);
-        breaks(
-            &bad,
-            45,
-            "GEOM",
-            width_at(end, 0, 2),
-            "the end record has width 1",
-        );
+        // Every level and axis: the reader checks several levels' widths at once.
+        for l in 0..b.levels {
+            let k = (l + 1) % 3;
+            let bad = forge_blocked(&bytes, |b| {
+                b.widths[1][l as usize][k as usize] = max + 1;
+                b.retile();
+            });
+            breaks(
+                &bad,
+                45,
+                "GEOM",
+                width_at(1, l, k),
+                &format!("more than {max}"),
+            );
+            let end = b.starts.len() - 1;
+            let bad = forge_blocked(&bytes, |b| b.widths[end][l as usize][2 - k as usize] = 1);
+            breaks(
+                &bad,
+                45,
+                "GEOM",
+                width_at(end, l, 2 - k),
+                "the end record has width 1",
+            );
+        }
     }
 }
 

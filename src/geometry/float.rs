@@ -24,6 +24,15 @@ pub(crate) fn from_ordered(u: u32) -> f32 {
     })
 }
 
+/// Whether ordered integer `u` stands for a finite f32 (its exponent not all ones), without
+/// building the float.
+#[inline(always)]
+pub(crate) fn ordered_is_finite(u: u32) -> bool {
+    // `from_ordered` keeps the exponent of `u` when bit 31 is set and flips it otherwise.
+    let exponent = (u >> 23) & 0xFF;
+    exponent != if u & 0x8000_0000 != 0 { 0xFF } else { 0 }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -48,6 +57,32 @@ mod tests {
         }
         for bits in [0u32, 1, 0x7F80_0000, 0x8000_0000, 0xFFFF_FFFF, 0x3F80_0001] {
             assert_eq!(from_ordered(ordered(f32::from_bits(bits))).to_bits(), bits);
+        }
+    }
+
+    #[test]
+    fn ordered_is_finite_agrees_with_the_float() {
+        let edges = [
+            0u32,
+            1,
+            0x007F_FFFF,
+            0x0080_0000,
+            0x7F7F_FFFF,
+            0x7F80_0000,
+            0x7FFF_FFFF,
+        ];
+        let around = edges
+            .into_iter()
+            .flat_map(|e| [e, e | 0x8000_0000, !e, !e & 0x7FFF_FFFF]);
+        let mut x = 0x9E37_79B9u32;
+        let spread = (0..100_000).map(|_| {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x
+        });
+        for u in around.chain(spread) {
+            assert_eq!(ordered_is_finite(u), from_ordered(u).is_finite(), "{u:#x}");
         }
     }
 }
