@@ -243,10 +243,14 @@ impl<W: Words> Words for Packed<W> {
         }
         let bit = self.bit(i);
         let (k, s) = ((bit / 32) as usize, (bit % 32) as u32);
-        let mut f = self.words.at(k) as u64 >> s;
-        if s + field.width as u32 > 32 {
-            f |= (self.words.at(k + 1) as u64) << (32 - s);
-        }
+        // Both words whether or not the field reaches the second (a branch on it is taken
+        // at random); the last word has none after it.
+        let next = if k + 1 < self.words.count() {
+            self.words.at(k + 1)
+        } else {
+            0
+        };
+        let f = (self.words.at(k) as u64 | (next as u64) << 32) >> s;
         field.decode(f as u32 & low_bits(field.width as u32))
     }
 

@@ -70,10 +70,12 @@ pub(crate) struct Slot {
 
 impl Slot {
     /// The symbol of the slot at `bit`.
-    #[inline]
+    #[inline(always)]
     pub fn symbol_at(&self, bit: u32) -> u32 {
-        ((self.p[0] >> bit) & 1 | ((self.p[1] >> bit) & 1) << 1 | ((self.p[2] >> bit) & 1) << 2)
-            as u32
+        // From the 64-bit halves that hold the bit: a shift of a `u128` by a variable amount
+        // takes several instructions per plane.
+        let [a, b, c] = self.p.map(|p| plane_bit(p, bit));
+        a | b << 1 | c << 2
     }
 
     /// The three words of the slot's group (always among the planes read).
@@ -99,6 +101,14 @@ impl Slot {
     pub fn stored(&self) -> u128 {
         self.p[1] & self.p[2]
     }
+}
+
+/// Bit `bit` of a plane, from the 64-bit half that holds it (a shift of a `u128` by a
+/// variable amount takes several instructions).
+#[inline(always)]
+fn plane_bit(p: u128, bit: u32) -> u32 {
+    let half = if bit < 64 { p as u64 } else { (p >> 64) as u64 };
+    (half >> (bit % 64) & 1) as u32
 }
 
 /// The symbol of bit `b` of a group's three words.
@@ -135,7 +145,7 @@ impl<W: Words> ZipperTables<W> {
 
     /// The planes of slot `(v, side)`'s block up to the slot's group (the bits after it
     /// read as 0: nothing below reads them).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn slot(&self, v: u32, side: usize) -> Slot {
         let block = (v >> BLOCK_SHIFT) as usize;
         let bit = 2 * (v & ((1 << BLOCK_SHIFT) - 1)) + side as u32;
@@ -145,7 +155,7 @@ impl<W: Words> ZipperTables<W> {
     /// The planes of block `block`'s groups `0..=last` (of all four when the block is
     /// whole: one read of 12 words with fixed shifts is cheaper than a loop), for slot bit
     /// `bit`.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn planes_until(&self, block: usize, last: u32, bit: u32) -> Slot {
         if PLANE_WORDS * (block + 1) <= self.planes.count() {
             let w: [u32; PLANE_WORDS] = self.planes.array(PLANE_WORDS * block);
@@ -176,7 +186,7 @@ impl<W: Words> ZipperTables<W> {
 
     /// The anchor of side `side`'s chain in block `block`: its value before the block's
     /// first slot.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn chain_head(&self, block: usize, side: usize) -> u32 {
         if self.short_heads {
             let offset = (self.heads.at(SHORT_HEAD_WORDS * block) >> (16 * side)) as u16 as i16;
@@ -187,7 +197,7 @@ impl<W: Words> ZipperTables<W> {
     }
 
     /// The exception words (`k` 0) or the records (`k` 1) before block `block`.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn before_block(&self, block: usize, k: usize) -> usize {
         if self.short_heads {
             let offset = (self.heads.at(SHORT_HEAD_WORDS * block + 1) >> (16 * k)) & 0xFFFF;
@@ -203,10 +213,11 @@ impl<W: Words> ZipperTables<W> {
     }
 
     /// The word holding the WART flag and the tip of exception or irregular slot `bit`.
-    #[inline]
+    #[inline(always)]
     fn stored_word(&self, slot: &Slot, bit: u32) -> u32 {
         let below = (1u128 << bit) - 1;
-        if slot.symbol_at(bit) == EXCEPTION {
+        // Symbols 6 (exception) and 7 (irregular) differ in plane 0.
+        if plane_bit(slot.p[0], bit) == 0 {
             let x = self.before_block(slot.block, 0)
                 + (slot.exceptions() & below).count_ones() as usize;
             self.exceptions.at(x)
@@ -216,14 +227,14 @@ impl<W: Words> ZipperTables<W> {
     }
 
     /// Index of the record of irregular slot `bit`.
-    #[inline]
+    #[inline(always)]
     fn record_index(&self, slot: &Slot, bit: u32) -> usize {
         let below = (1u128 << bit) - 1;
         self.before_block(slot.block, 1) + (slot.irregular() & below).count_ones() as usize
     }
 
     /// The tip of a delta slot: its side's chain value after it.
-    #[inline]
+    #[inline(always)]
     fn chain(&self, slot: &Slot) -> u32 {
         let side = (slot.bit & 1) as usize;
         let same = (LEFT_SLOTS << side) & up_to(slot.bit);
@@ -243,7 +254,7 @@ impl<W: Words> ZipperTables<W> {
     /// (symbol 4): then a delta symbol there is a wart and symbol 5 the T2's redundant copy
     /// on either side (OPERATORS.md §8.1). `group` holds the slot's group's words, where
     /// the next slot lies unless `v` ends its ring or the slot ends the group.
-    #[inline]
+    #[inline(always)]
     fn before_t2(&self, v: u32, side: usize, group: [u32; 3]) -> bool {
         if !self.wart_deltas {
             return false;
@@ -260,7 +271,7 @@ impl<W: Words> ZipperTables<W> {
 
     /// The tip the ring rules give a slot of symbol 4 (`v.p`) or 5 (`v.n.n` on the left or
     /// before a canonical T2, else `NULL`).
-    #[inline]
+    #[inline(always)]
     fn ring_rule_tip(&self, slot: &Slot, v: u32, side: usize, symbol: u32) -> u32 {
         if symbol == PREVIOUS {
             self.ring_prev(v)
