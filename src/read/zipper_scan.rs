@@ -131,13 +131,13 @@ impl Neighbours {
             let next = t.ring_next(v);
             let nn = t.ring_next(next);
             (nn_low, nn_high) = (nn_low.min(nn), nn_high.max(nn));
+            // The shift above read the next vertex's slots when they are in this block.
+            if next == v + 1 && k as usize + 1 < count {
+                continue;
+            }
             for side in 0..2 {
                 let bit = 2 * k as usize + side;
-                let is_t2 = if next == v + 1 && bit + 2 < used {
-                    t2 >> (bit + 2) & 1 != 0
-                } else {
-                    t.symbol(next, side) == PREVIOUS
-                };
+                let is_t2 = t.symbol(next, side) == PREVIOUS;
                 let (word, at) = (bit / 64, bit % 64);
                 next_is_t2[word] = next_is_t2[word] & !(1 << at) | (is_t2 as u64) << at;
             }
@@ -340,18 +340,22 @@ pub(super) fn scan_slots(t: &Tables) -> Option<(Vec<u8>, u64)> {
         // slot order (a list's words are used in that order).
         let stored = slot.stored();
         let mut chained = [0u32; 128];
-        let mut stored_wart = 0u128;
-        for bit in Bits128(stored) {
-            let word = if slot.exceptions() >> bit & 1 != 0 {
-                exceptions += 1;
-                exception(exceptions - 1)
-            } else {
-                records += 1;
-                record(records - 1)
-            };
-            stored_wart |= ((word & WART != 0) as u128) << bit;
+        // Each list's words in its own slot order; the WART bits set in 64-bit halves (a
+        // `u128` shift by a variable amount costs a branch).
+        let mut wart_halves = [0u64; 2];
+        let mut take = |bit: usize, word: u32| {
+            wart_halves[bit / 64] |= ((word & WART != 0) as u64) << (bit % 64);
             chained[bit] = word & VALUE;
+        };
+        for bit in Bits128(slot.exceptions()) {
+            take(bit, exception(exceptions));
+            exceptions += 1;
         }
+        for bit in Bits128(slot.irregular()) {
+            take(bit, record(records));
+            records += 1;
+        }
+        let stored_wart = wart_halves[0] as u128 | (wart_halves[1] as u128) << 64;
         let n = Neighbours::of_block(t, first, used, &slot);
         let [p0, p1, p2] = slot.p;
         let (delta, rule_5, irregular) = (!p2, p0 & !p1 & p2, slot.irregular());
