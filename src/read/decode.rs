@@ -47,6 +47,15 @@ impl Container<'_> {
                 let v = table.v_table();
                 triangles.extend(v.chunks_exact(3).map(|t| [t[0], t[1], t[2]]));
             }
+            // The standard LR tables the Zipper encodes, read back in one pass: the same
+            // triangles, each a few reads instead of slot decodes.
+            super::Connectivity::Zipper(zipper) => {
+                let lr = zipper.to_lr_tables();
+                for t in lr.triangles() {
+                    slot_ids.push(t.0);
+                    triangles.push(lr.triangle_vertices(t).map(|v| v.0));
+                }
+            }
             _ => {
                 for t in conn.triangles() {
                     slot_ids.push(t.0);

@@ -282,6 +282,21 @@ impl<W: Words> ZipperTables<W> {
         }
     }
 
+    /// The tip and WART flag of slot `(v, side)`, whose block's planes `slot` holds (with
+    /// `slot.bit` the slot's bit): [`LrLayout::tip_and_wart`] given the planes, so that a
+    /// pass over a block reads them once ([`ZipperTables::to_lr_tables`]).
+    #[inline(always)]
+    pub(crate) fn slot_tip_and_wart(&self, slot: &Slot, v: u32, side: usize) -> (u32, bool) {
+        match slot.symbol_at(slot.bit) {
+            s if s < DELTAS => (self.chain(slot), self.before_t2(v, side, slot.group())),
+            s @ (PREVIOUS | NEXT_NEXT_OR_NULL) => (self.ring_rule_tip(slot, v, side, s), false),
+            _ => {
+                let word = self.stored_word(slot, slot.bit);
+                (word & VALUE, word & WART != 0)
+            }
+        }
+    }
+
     /// Whether the header's `SHORT_HEADS` flag is set (version 1.9).
     pub fn short_heads(&self) -> bool {
         self.short_heads
@@ -382,15 +397,7 @@ impl<W: Words> LrLayout for ZipperTables<W> {
     }
     #[inline]
     fn tip_and_wart(&self, v: u32, side: usize) -> (u32, bool) {
-        let slot = self.slot(v, side);
-        match slot.symbol_at(slot.bit) {
-            s if s < DELTAS => (self.chain(&slot), self.before_t2(v, side, slot.group())),
-            s @ (PREVIOUS | NEXT_NEXT_OR_NULL) => (self.ring_rule_tip(&slot, v, side, s), false),
-            _ => {
-                let word = self.stored_word(&slot, slot.bit);
-                (word & VALUE, word & WART != 0)
-            }
-        }
+        self.slot_tip_and_wart(&self.slot(v, side), v, side)
     }
     #[inline]
     fn wart(&self, v: u32, side: usize) -> bool {
