@@ -263,20 +263,21 @@ pub(crate) fn opposite<T: LrLayout>(t: &T, v: u32, side: usize, k: usize) -> u32
         .unwrap_or_else(|| t.inferred_opposite(v, 4 * side as u32 + 2 * k as u32))
 }
 
-/// Checks that every slot and T0 opposite of `z` decodes to what `t` holds. The operators
-/// read the tables through tips, WART and IRREGULAR flags, stored and T0 opposites (rings,
-/// `C` and T0 vertices are copied): when the first three agree on every slot, every
-/// inferred opposite agrees, so only irregular slots' opposites need comparing (they may
-/// be stored in one and inferred in the other).
+/// Checks that every slot and T0 opposite of `z` decodes to what `t` holds, on the tables
+/// `z` reads back as ([`ZipperTables::to_lr_tables`]: the decoder's answers, each block's
+/// planes read once). The operators read the tables through tips, WART and IRREGULAR flags,
+/// stored and T0 opposites (rings, `C` and T0 vertices are copied): when the first three
+/// agree on every slot, every inferred opposite agrees, so only irregular slots' opposites
+/// need comparing (they may be stored in one and inferred in the other).
 fn same_as_standard(z: &ZipperTables<Vec<u32>>, t: &LrTables<Vec<u32>>) -> Result<()> {
+    let back = z.to_lr_tables();
     for v in 0..t.m_r {
         for side in 0..2 {
             let irregular = t.irregular(v, side);
-            let same = z.tip(v, side) == t.tip(v, side)
-                && z.wart(v, side) == t.wart(v, side)
-                && z.irregular(v, side) == irregular
+            let same = back.tip_and_wart(v, side) == t.tip_and_wart(v, side)
+                && back.irregular(v, side) == irregular
                 && (!irregular
-                    || (0..2).all(|k| opposite(z, v, side, k) == opposite(t, v, side, k)));
+                    || (0..2).all(|k| opposite(&back, v, side, k) == opposite(t, v, side, k)));
             if !same {
                 return Err(Error::Internal(format!(
                     "zipper slot ({v}, {side}) does not decode to the LR's"
@@ -285,7 +286,7 @@ fn same_as_standard(z: &ZipperTables<Vec<u32>>, t: &LrTables<Vec<u32>>) -> Resul
         }
     }
     for k in 0..3 * t.t0_count() {
-        if z.t0_opposite(k) != t.t0_opposite(k) {
+        if back.t0_opposite(k) != t.t0_opposite(k) {
             return Err(Error::Internal(format!(
                 "zipper T0 corner row {k} does not decode to the LR's opposite"
             )));

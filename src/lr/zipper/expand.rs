@@ -1,12 +1,13 @@
 //! The standard LR tables a Zipper encodes, read back in one pass: every slot's tip and
-//! flags block by block (each block's planes read once), and the opposites the ring rules
-//! would infer for irregular slots and T0 corners resolved once. The LR's operators then
+//! flags block by block (each block's planes read once, each side's chain followed slot by
+//! slot), and the opposites the ring rules would infer for irregular slots and T0 corners
+//! resolved once. The LR's operators then
 //! answer as the Zipper's do, several times faster: a verifying reader checks the semantic
 //! rules on them (FORMAT.md §5.1 asks the same answers of both).
 
 use super::tables::ZipperTables;
-use super::{BLOCK_SHIFT, IRREGULAR_SLOT};
-use crate::lr::tables::{LrLayout, LrTables, IRREGULAR, LEFT, RIGHT, WART};
+use super::{BLOCK_SHIFT, DELTAS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PREVIOUS, RECORD_WORDS};
+use crate::lr::tables::{LrLayout, LrTables, IRREGULAR, LEFT, RIGHT, VALUE, WART};
 use crate::words::Words;
 
 impl<W: Words> ZipperTables<W> {
@@ -22,12 +23,36 @@ impl<W: Words> ZipperTables<W> {
         for block in 0..blocks {
             let mut slot = self.block_planes(block);
             let first = (block << BLOCK_SHIFT) as u32;
+            // Each side's chain value, and the next exception word and record, in slot
+            // order: a slot's tip as `slot_tip_and_wart` gives it, without summing the
+            // chain from the last stored slot for every slot.
+            let mut chain = [LEFT, RIGHT].map(|side| self.chain_head(block, side));
+            let (mut x, mut r) = (self.before_block(block, 0), self.before_block(block, 1));
             for v in first..m_r.min(first + (1 << BLOCK_SHIFT)) {
                 for side in [LEFT, RIGHT] {
                     slot.bit = 2 * (v - first) + side as u32;
-                    let (tip, wart) = self.slot_tip_and_wart(&slot, v, side);
+                    let (tip, wart, irregular) = match slot.symbol_at(slot.bit) {
+                        s if s < DELTAS => {
+                            chain[side] = chain[side].wrapping_sub(s);
+                            let wart = self.before_t2(v, side, slot.group());
+                            (chain[side], wart, false)
+                        }
+                        s @ (PREVIOUS | NEXT_NEXT_OR_NULL) => {
+                            (self.ring_rule_tip(&slot, v, side, s), false, false)
+                        }
+                        s => {
+                            let irregular = s == IRREGULAR_SLOT;
+                            let word = match irregular {
+                                true => self.records.at(RECORD_WORDS * r),
+                                false => self.exceptions.at(x),
+                            };
+                            (r, x) = (r + irregular as usize, x + !irregular as usize);
+                            chain[side] = word & VALUE;
+                            (word & VALUE, word & WART != 0, irregular)
+                        }
+                    };
                     let flags = if wart { WART } else { 0 };
-                    if slot.symbol_at(slot.bit) == IRREGULAR_SLOT {
+                    if irregular {
                         lr.push(IRREGULAR | flags | (vo_star.len() / 3) as u32);
                         let opposites = [0, 1].map(|k| super::encode::opposite(self, v, side, k));
                         vo_star.extend([tip, opposites[0], opposites[1]]);

@@ -255,7 +255,7 @@ impl<W: Words> ZipperTables<W> {
     /// on either side (OPERATORS.md §8.1). `group` holds the slot's group's words, where
     /// the next slot lies unless `v` ends its ring or the slot ends the group.
     #[inline(always)]
-    fn before_t2(&self, v: u32, side: usize, group: [u32; 3]) -> bool {
+    pub(crate) fn before_t2(&self, v: u32, side: usize, group: [u32; 3]) -> bool {
         if !self.wart_deltas {
             return false;
         }
@@ -272,28 +272,13 @@ impl<W: Words> ZipperTables<W> {
     /// The tip the ring rules give a slot of symbol 4 (`v.p`) or 5 (`v.n.n` on the left or
     /// before a canonical T2, else `NULL`).
     #[inline(always)]
-    fn ring_rule_tip(&self, slot: &Slot, v: u32, side: usize, symbol: u32) -> u32 {
+    pub(crate) fn ring_rule_tip(&self, slot: &Slot, v: u32, side: usize, symbol: u32) -> u32 {
         if symbol == PREVIOUS {
             self.ring_prev(v)
         } else if side == LEFT || self.before_t2(v, side, slot.group()) {
             self.ring_next(self.ring_next(v))
         } else {
             NULL
-        }
-    }
-
-    /// The tip and WART flag of slot `(v, side)`, whose block's planes `slot` holds (with
-    /// `slot.bit` the slot's bit): [`LrLayout::tip_and_wart`] given the planes, so that a
-    /// pass over a block reads them once ([`ZipperTables::to_lr_tables`]).
-    #[inline(always)]
-    pub(crate) fn slot_tip_and_wart(&self, slot: &Slot, v: u32, side: usize) -> (u32, bool) {
-        match slot.symbol_at(slot.bit) {
-            s if s < DELTAS => (self.chain(slot), self.before_t2(v, side, slot.group())),
-            s @ (PREVIOUS | NEXT_NEXT_OR_NULL) => (self.ring_rule_tip(slot, v, side, s), false),
-            _ => {
-                let word = self.stored_word(slot, slot.bit);
-                (word & VALUE, word & WART != 0)
-            }
         }
     }
 
@@ -397,7 +382,15 @@ impl<W: Words> LrLayout for ZipperTables<W> {
     }
     #[inline]
     fn tip_and_wart(&self, v: u32, side: usize) -> (u32, bool) {
-        self.slot_tip_and_wart(&self.slot(v, side), v, side)
+        let slot = self.slot(v, side);
+        match slot.symbol_at(slot.bit) {
+            s if s < DELTAS => (self.chain(&slot), self.before_t2(v, side, slot.group())),
+            s @ (PREVIOUS | NEXT_NEXT_OR_NULL) => (self.ring_rule_tip(&slot, v, side, s), false),
+            _ => {
+                let word = self.stored_word(&slot, slot.bit);
+                (word & VALUE, word & WART != 0)
+            }
+        }
     }
     #[inline]
     fn wart(&self, v: u32, side: usize) -> bool {
