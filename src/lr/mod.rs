@@ -45,6 +45,7 @@ mod build;
 mod closed;
 pub mod compact;
 mod leaf_moves;
+pub(crate) mod read_back;
 mod ring;
 mod tables;
 pub mod zipper;

@@ -278,7 +278,7 @@ pub(super) fn zipper_tables<'a>(
         let mut lr = tables.to_lr_tables();
         #[cfg(any(test, fuzzing))]
         assert!(
-            crate::lr::zipper::answers_agree(&tables, &lr),
+            crate::lr::read_back::answers_agree(&tables, &lr),
             "the Zipper's LR tables answer as the Zipper does"
         );
         lr.boundaries_on_ring = verified_boundaries(&lr, &f, corner_at, flag, 32)?;

@@ -11,6 +11,7 @@ use super::{
 };
 use crate::corner_table::NONE;
 use crate::error::{Error, Result};
+use crate::lr::read_back::opposite;
 use crate::lr::tables::{LrLayout, LrTables, IRREGULAR, LEFT, NULL, WART};
 
 /// Whether slot `(v, side)` of `t` is followed on its side by a canonical T2 (symbol
@@ -255,12 +256,6 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
     };
     same_as_standard(&z, t)?;
     Ok(z)
-}
-
-/// The opposite of transversal corner `k` of slot `(v, side)`: stored or inferred.
-pub(crate) fn opposite<T: LrLayout>(t: &T, v: u32, side: usize, k: usize) -> u32 {
-    t.stored_opposite(v, side, k)
-        .unwrap_or_else(|| t.inferred_opposite(v, 4 * side as u32 + 2 * k as u32))
 }
 
 /// Checks that every slot and T0 opposite of `z` decodes to what `t` holds, on the tables

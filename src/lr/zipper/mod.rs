@@ -40,8 +40,6 @@ mod expand;
 mod packed;
 mod tables;
 
-#[cfg(any(test, fuzzing))]
-pub(crate) use expand::answers_agree;
 pub use packed::{first_bit, list_fields, packed_words, Field, FieldKind, Packed};
 pub(crate) use tables::Slot;
 pub(crate) use tables::LEFT_SLOTS;

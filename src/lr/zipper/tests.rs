@@ -167,7 +167,7 @@ fn read_back_as_standard_tables_the_answers_agree() {
         let ct = CornerTable::from_mesh(mesh).unwrap();
         let z = Zipper::build(&ct, &LrOptions::default()).unwrap();
         let lr = z.tables().to_lr_tables();
-        assert!(super::answers_agree(z.tables(), &lr));
+        assert!(crate::lr::read_back::answers_agree(z.tables(), &lr));
         assert_eq!(lr.triangles().count(), z.tables().triangles().count());
     }
 }
