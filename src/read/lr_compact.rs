@@ -4,7 +4,7 @@
 
 use super::fields::Fields;
 use super::lr_compact_scan::{scan_pairs, stored_opposites};
-use super::lr_rules::{check_rings, check_vertex_corners, verified_boundaries, SlotMap};
+use super::lr_rules::{check_rings, verify_read_back, SlotMap};
 use super::Sections;
 use crate::corner_table::NONE;
 use crate::error::{Result, Rule};
@@ -242,19 +242,9 @@ pub(super) fn lr_compact_tables<'a>(
     let flag = h.flags & LR_BOUNDARIES_ON_RING != 0;
     tables.boundaries_on_ring = flag;
     if verify {
-        // The semantic rules on the standard LR tables these encode: the same answers
-        // (checked in tests and fuzzing), each a few reads instead of a pair's decode.
-        let mut lr = crate::lr::read_back::standard_tables(&tables);
-        #[cfg(any(test, fuzzing))]
-        assert!(
-            crate::lr::read_back::answers_agree(&tables, &lr),
-            "the bit-efficient LR's standard tables answer as it does"
-        );
-        lr.boundaries_on_ring = verified_boundaries(&lr, &f, corner_at, flag, 28)?;
-        tables.boundaries_on_ring = lr.boundaries_on_ring;
-        check_vertex_corners(&lr, Rule(23), |v, rule, message| {
-            f.err(vertex_at(v), rule, message)
-        })?;
+        let lr = crate::lr::read_back::standard_tables(&tables);
+        tables.boundaries_on_ring =
+            verify_read_back(&tables, lr, &f, corner_at, vertex_at, flag, 28)?;
     }
     Ok((tables, slots.triangles + n0 as u64))
 }

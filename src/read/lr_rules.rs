@@ -6,7 +6,7 @@
 use super::fields::Fields;
 use crate::error::{Error, Result, Rule};
 use crate::ids::{Corner, Vertex};
-use crate::lr::{LrLayout, NULL};
+use crate::lr::{LrLayout, LrTables, NULL};
 use crate::ops::CornerOps;
 use crate::words::Words;
 
@@ -293,6 +293,34 @@ pub(super) fn verified_boundaries<T: LrLayout>(
         ));
     }
     Ok(on_ring)
+}
+
+/// The verifying reader's rules ([V21]–[V23], [V38], [V53]) for layout `t`, checked on the
+/// standard tables `lr` it reads back as ([`crate::lr::read_back`]: the same answers, each a
+/// few reads instead of a slot's decode; asserted in tests and fuzzing). Faults are reported
+/// at `t`'s offsets: `corner_at` for a corner, `vertex_at` for a vertex, `flag_at` for the
+/// header's flags. Returns whether every boundary runs along the ring.
+pub(super) fn verify_read_back<T: LrLayout>(
+    t: &T,
+    mut lr: LrTables<Vec<u32>>,
+    f: &Fields,
+    corner_at: impl Fn(Corner) -> usize,
+    vertex_at: impl Fn(u32) -> usize,
+    flag: bool,
+    flag_at: usize,
+) -> Result<bool> {
+    #[cfg(any(test, fuzzing))]
+    assert!(
+        crate::lr::read_back::answers_agree(t, &lr),
+        "the standard tables read back answer as the layout does"
+    );
+    #[cfg(not(any(test, fuzzing)))]
+    let _ = t;
+    lr.boundaries_on_ring = verified_boundaries(&lr, f, corner_at, flag, flag_at)?;
+    check_vertex_corners(&lr, Rule(23), |v, rule, message| {
+        f.err(vertex_at(v), rule, message)
+    })?;
+    Ok(lr.boundaries_on_ring)
 }
 
 /// [V23] (strips: [V32]) `v.c.v = v` and [V38] `v.c` is `NONE` exactly for a vertex no triangle uses, and

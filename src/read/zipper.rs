@@ -3,9 +3,7 @@
 //! [`ZipperTables`] over the buffer's little-endian words.
 
 use super::fields::Fields;
-use super::lr_rules::{
-    check_rings, check_vertex_corners, ring_slot_flags, verified_boundaries, SlotMap,
-};
+use super::lr_rules::{check_rings, ring_slot_flags, verify_read_back, SlotMap};
 use super::zipper_scan::{block_symbols, scan_slots, tip_word_holds};
 use super::Sections;
 use crate::corner_table::NONE;
@@ -273,19 +271,9 @@ pub(super) fn zipper_tables<'a>(
     let flag = h.flags & LR_BOUNDARIES_ON_RING != 0;
     tables.boundaries_on_ring = flag;
     if verify {
-        // The semantic rules on the standard LR tables the Zipper encodes: the same answers
-        // (checked in tests and fuzzing), each a few reads instead of a slot's decode.
-        let mut lr = tables.to_lr_tables();
-        #[cfg(any(test, fuzzing))]
-        assert!(
-            crate::lr::read_back::answers_agree(&tables, &lr),
-            "the Zipper's LR tables answer as the Zipper does"
-        );
-        lr.boundaries_on_ring = verified_boundaries(&lr, &f, corner_at, flag, 32)?;
-        tables.boundaries_on_ring = lr.boundaries_on_ring;
-        check_vertex_corners(&lr, Rule(23), |v, rule, message| {
-            f.err(vertex_at(v), rule, message)
-        })?;
+        let lr = tables.to_lr_tables();
+        tables.boundaries_on_ring =
+            verify_read_back(&tables, lr, &f, corner_at, vertex_at, flag, 32)?;
     }
     Ok((tables, slots.triangles + n0 as u64))
 }
