@@ -72,15 +72,55 @@ pub(super) fn check_rings<W: Words>(
 
 /// What one pass over the ring slots of any LR layout finds: which slots hold a canonical
 /// triangle ([`CANONICAL`]) and which jump to the same side of `v.n` ([`JUMPS`]: redundant T2
-/// copies and wart slots), a byte per slot so that the pass is a plain map the compiler
-/// vectorizes. [V19] and the corner checks of [V20] and [V37] then look the bytes up instead
-/// of decoding slots again at random.
+/// copies and wart slots). [V19] and the corner checks of [V20] and [V37] then look the flags
+/// up instead of decoding slots again at random.
 pub(super) struct SlotMap {
-    flags: Vec<u8>,
+    flags: SlotFlags,
     /// Canonical triangles in ring slots.
     pub triangles: u64,
     m_r: u32,
     t0: u32,
+}
+
+/// The flags of every ring slot, in slot order, as the pass that found them made them.
+enum SlotFlags {
+    /// A byte per slot: the passes of the LR layouts are plain maps the compiler vectorizes.
+    Bytes(Vec<u8>),
+    /// Two bit vectors (slot `k` is bit `k mod 64` of word `k / 64`, bits past the last slot
+    /// 0): the Zipper's pass finds the flags as masks of its blocks, and a quarter of the
+    /// bytes to write made a tenth of its open.
+    Bits(SlotBits),
+}
+
+/// The canonical and jumping slots as bit vectors ([`SlotFlags::Bits`]), interleaved: word
+/// `2i` holds slots `64i .. 64i + 63` canonical, word `2i + 1` those that jump (one
+/// allocation, and [V19] reads both words of a slot together).
+pub(super) struct SlotBits {
+    pub words: Vec<u64>,
+    /// Slots (`2 m_r`).
+    pub len: usize,
+}
+
+impl SlotBits {
+    /// Whether slot `k` has `flag` ([`CANONICAL`] or [`JUMPS`]; false past the end).
+    #[inline]
+    fn has(&self, k: usize, flag: u8) -> bool {
+        let word = 2 * (k / 64) + (flag == JUMPS) as usize;
+        self.words.get(word).is_some_and(|w| w >> (k % 64) & 1 != 0)
+    }
+
+    /// On one ring, where slot `t` jumps to slot `t + 2` (mod `len`): whether every jumping
+    /// slot lands on a canonical one, a word at a time.
+    fn jumps_land_on_one_ring(&self) -> bool {
+        let (w, n) = (&self.words, self.len);
+        // The words before the one of slot n - 2: slot t + 2 is bit t of the pair's shift.
+        let split = (n - 2) / 64;
+        let words = (0..split).fold(true, |ok, i| {
+            let target = w[2 * i] >> 2 | w[2 * i + 2] << 62;
+            ok & (w[2 * i + 1] & !target == 0)
+        });
+        words && (64 * split..n).all(|t| !self.has(t, JUMPS) || self.has((t + 2) % n, CANONICAL))
+    }
 }
 
 pub(super) const CANONICAL: u8 = 1;
@@ -155,19 +195,50 @@ impl SlotMap {
     /// (`triangles`), as the LR reader's does.
     pub(super) fn with_counted_flags(flags: Vec<u8>, triangles: u64, m_r: u32, t0: u32) -> SlotMap {
         SlotMap {
-            flags,
+            flags: SlotFlags::Bytes(flags),
             triangles,
             m_r,
             t0,
         }
     }
 
+    /// The map of flags as bit vectors, with the canonical slots counted.
+    pub(super) fn with_bits(bits: SlotBits, triangles: u64, m_r: u32, t0: u32) -> SlotMap {
+        debug_assert_eq!(bits.len, 2 * m_r as usize);
+        SlotMap {
+            flags: SlotFlags::Bits(bits),
+            triangles,
+            m_r,
+            t0,
+        }
+    }
+
+    /// Slots.
+    fn len(&self) -> usize {
+        match &self.flags {
+            SlotFlags::Bytes(bytes) => bytes.len(),
+            SlotFlags::Bits(bits) => bits.len,
+        }
+    }
+
+    /// The flags of slot `k` ([`CANONICAL`], [`JUMPS`]); `k` below [`SlotMap::len`].
+    #[inline]
+    fn flag(&self, k: usize) -> u8 {
+        match &self.flags {
+            SlotFlags::Bytes(bytes) => bytes[k],
+            SlotFlags::Bits(bits) => {
+                (bits.has(k, CANONICAL) as u8 * CANONICAL) | (bits.has(k, JUMPS) as u8 * JUMPS)
+            }
+        }
+    }
+
     /// Whether two maps flag the same slots and count the same triangles (a fast pass's map
-    /// against [`SlotMap::new`]'s, in tests and fuzzing).
+    /// against [`SlotMap::new`]'s, in tests and fuzzing), whichever form each has.
     #[cfg(any(test, fuzzing))]
     pub(super) fn agrees_with(&self, other: &SlotMap) -> bool {
-        (&self.flags, self.triangles, self.m_r, self.t0)
-            == (&other.flags, other.triangles, other.m_r, other.t0)
+        (self.len(), self.triangles, self.m_r, self.t0)
+            == (other.len(), other.triangles, other.m_r, other.t0)
+            && (0..self.len()).all(|k| self.flag(k) == other.flag(k))
     }
 
     /// Whether `c` is a corner of a canonical triangle ([`LrLayout::is_corner`]).
@@ -175,9 +246,9 @@ impl SlotMap {
     pub(super) fn is_corner(&self, c: u32) -> bool {
         let t = (c >> 2) as usize;
         c & 3 != 3
-            && match self.flags.get(t) {
-                Some(&f) => f & CANONICAL != 0,
-                None => t - 2 * (self.m_r as usize) < self.t0 as usize,
+            && match t < self.len() {
+                true => self.flag(t) & CANONICAL != 0,
+                false => t - 2 * (self.m_r as usize) < self.t0 as usize,
             }
     }
 
@@ -190,26 +261,34 @@ impl SlotMap {
         f: &Fields,
         corner_at: impl Fn(Corner) -> usize,
     ) -> Result<()> {
-        let n = self.flags.len();
+        let n = self.len();
         if tables.ring_count() == 1 && n >= 2 {
             // One ring: slot `t` jumps to slot `t + 2` (mod 2 m_r). A branch-free pass; the
             // slot at fault is looked for only when it fails.
-            let lands = |(&x, &y): (&u8, &u8)| x & JUMPS == 0 || y & CANONICAL != 0;
-            let tail = self.flags[n - 2..].iter().zip(&self.flags[..2]);
-            let all = self.flags.iter().zip(&self.flags[2..]).chain(tail);
-            if all.fold(true, |ok, pair| ok & lands(pair)) {
+            let landed = match &self.flags {
+                SlotFlags::Bytes(flags) => {
+                    let lands = |(&x, &y): (&u8, &u8)| x & JUMPS == 0 || y & CANONICAL != 0;
+                    let tail = flags[n - 2..].iter().zip(&flags[..2]);
+                    let all = flags.iter().zip(&flags[2..]).chain(tail);
+                    all.fold(true, |ok, pair| ok & lands(pair))
+                }
+                SlotFlags::Bits(bits) => bits.jumps_land_on_one_ring(),
+            };
+            if landed {
                 return Ok(());
             }
         }
-        for (slot, _) in self
-            .flags
-            .iter()
-            .enumerate()
-            .filter(|(_, &x)| x & JUMPS != 0)
-        {
+        let jumping: Box<dyn Iterator<Item = usize> + '_> = match &self.flags {
+            SlotFlags::Bytes(flags) => Box::new((0..n).filter(|&k| flags[k] & JUMPS != 0)),
+            SlotFlags::Bits(bits) => Box::new(
+                (bits.words.iter().skip(1).step_by(2).enumerate())
+                    .flat_map(|(i, &w)| BitsSet(w).map(move |k| 64 * i + k as usize)),
+            ),
+        };
+        for slot in jumping {
             let (v, side) = ((slot / 2) as u32, slot % 2);
             let target = 2 * tables.ring_next(v) as usize + side;
-            if self.flags[target] & CANONICAL == 0 {
+            if self.flag(target) & CANONICAL == 0 {
                 return Err(f.err(
                     corner_at(Corner(8 * v + 4 * side as u32)),
                     Rule(19),

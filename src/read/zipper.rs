@@ -153,8 +153,8 @@ pub(super) fn zipper_tables<'a>(
 
     // [V58] symbols, heads, exceptions and records: a fast pass first; the slot at fault is
     // looked for only when it fails. Tests and fuzzing check that both passes agree.
-    let fast = scan_slots(&tables)
-        .map(|(flags, canonical)| SlotMap::with_counted_flags(flags, canonical, m_r, n0));
+    let fast =
+        scan_slots(&tables).map(|(bits, canonical)| SlotMap::with_bits(bits, canonical, m_r, n0));
     #[cfg(any(test, fuzzing))]
     {
         let slow = check_slots(&tables, &word_err)

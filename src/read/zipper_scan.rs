@@ -7,7 +7,7 @@
 //! holds: when it does not, the reader's slot-by-slot loop (`check_slots`) finds the first
 //! fault and names it.
 
-use super::lr_rules::{slot_flag_masks, BitsSet, CANONICAL, JUMPS};
+use super::lr_rules::{slot_flag_masks, BitsSet, SlotBits};
 use crate::lr::zipper::{
     Slot, BLOCK_SHIFT, DELTAS, LEFT_SLOTS, PREVIOUS, RECORD_WORDS, STATE_SHIFT, STORES_BOTH,
     STORES_FIRST, STORES_NONE, STORES_SECOND,
@@ -310,7 +310,7 @@ fn below(k: usize) -> u128 {
 
 /// [V58] on every slot, and the slot flags, in slot order, with the number of canonical ones;
 /// `None` when the rule fails.
-pub(super) fn scan_slots(t: &Tables) -> Option<(Vec<u8>, u64)> {
+pub(super) fn scan_slots(t: &Tables) -> Option<(SlotBits, u64)> {
     let (m, m_r) = (t.m, t.m_r);
     // The exception and record words decoded once, in order, for both checks (the lists may
     // be bit fields: a field read in the slot loop kept its step from being inlined).
@@ -323,13 +323,16 @@ pub(super) fn scan_slots(t: &Tables) -> Option<(Vec<u8>, u64)> {
     // Word 0 in place of a word past the end: the counts below fail the scan then.
     let exception = |i: usize| exception_words.get(i).copied().unwrap_or(0);
     let record = |i: usize| record_words.get(RECORD_WORDS * i).copied().unwrap_or(0);
-    // Filled block by block: zeroing it first would write every byte twice.
-    let mut flags = Vec::with_capacity(2 * m_r as usize);
+    // Per 64 slots the canonical and the jumping ones ([`SlotBits`]): four words per block
+    // (the last block's last two may be past the last slot: dropped).
+    let words = 2 * (2 * m_r as usize).div_ceil(64);
+    let mut bits = Vec::with_capacity(words + 2);
     let mut canonical = 0u64;
     let (mut exceptions, mut records) = (0usize, 0usize);
     let mut bad = false;
     for block in 0..(m_r as usize).div_ceil(1 << BLOCK_SHIFT) {
-        bad |= [0, 1].map(|k| t.before_block(block, k)) != [exceptions, records];
+        // Spelled out: through an array's `map` the head reads were not inlined.
+        bad |= (t.before_block(block, 0) != exceptions) | (t.before_block(block, 1) != records);
         let first = (block << BLOCK_SHIFT) as u32;
         let slot = t.block_planes(block);
         let used = 2 * ((m_r - first) as usize).min(1 << BLOCK_SHIFT);
@@ -387,19 +390,18 @@ pub(super) fn scan_slots(t: &Tables) -> Option<(Vec<u8>, u64)> {
         let next_next = (from_chain & chained_next_next) | (rule_5 & !null);
         let wart = (delta & before_t2) | stored_wart;
         let (block_canonical, jumps) = slot_flag_masks(next_next, !null, wart, irregular);
-        let block_canonical = block_canonical & below(used);
-        let (canonical_bytes, jumps_bytes) = (block_canonical.to_le_bytes(), jumps.to_le_bytes());
-        let mut all_flags = [0u8; 128];
-        for (i, eight) in all_flags.chunks_exact_mut(8).enumerate() {
-            let spread = (SPREAD[canonical_bytes[i] as usize] * CANONICAL as u64)
-                | (SPREAD[jumps_bytes[i] as usize] * JUMPS as u64);
-            eight.copy_from_slice(&spread.to_le_bytes());
-        }
-        flags.extend_from_slice(&all_flags[..used]);
+        let (block_canonical, jumps) = (block_canonical & below(used), jumps & below(used));
+        bits.extend([block_canonical, jumps].map(|m| m as u64));
+        bits.extend([block_canonical, jumps].map(|m| (m >> 64) as u64));
         canonical += block_canonical.count_ones() as u64;
     }
     bad |= (exceptions != exception_count) | (records != record_count);
-    (!bad).then_some((flags, canonical))
+    bits.truncate(words);
+    let bits = SlotBits {
+        words: bits,
+        len: 2 * m_r as usize,
+    };
+    (!bad).then_some((bits, canonical))
 }
 
 #[cfg(test)]

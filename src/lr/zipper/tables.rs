@@ -179,6 +179,7 @@ impl<W: Words> ZipperTables<W> {
     }
 
     /// Every plane of block `block` (its last group: the block's slots, or the ring's).
+    #[inline(always)]
     pub(crate) fn block_planes(&self, block: usize) -> Slot {
         let groups = plane_array_words(self.m_r) / 3 - 4 * block;
         self.planes_until(block, groups.min(4) as u32 - 1, 0)
