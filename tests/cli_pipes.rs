@@ -238,10 +238,12 @@ fn orient_repairs_the_shuffled_mesh_and_gives_it_back() {
             "-o",
             plain.to_str().unwrap(),
             "--json",
+            "--no-orient",
         ]))
         .stdout,
     );
     assert!(before["hints"].as_array().unwrap().len() == 1);
+    assert_eq!(before["orientation"], serde_json::Value::Null);
     let after = json(
         &ok(&lrmesh(&[
             "encode",
@@ -264,7 +266,29 @@ fn orient_repairs_the_shuffled_mesh_and_gives_it_back() {
     );
     assert!(after["orientation"]["reversed_triangles"].as_u64().unwrap() > 0);
     assert_eq!(after["orientation"]["conflicts"], 0);
+    assert_eq!(after["orientation"]["automatic"], false);
     assert_eq!(after["hints"], serde_json::json!([]));
+    // Without either option the encoder repairs it too, the file being smaller so (with the
+    // reversed triangles recorded), and says so.
+    let auto = scratch("shuffled-auto.lrm");
+    let auto = json(
+        &ok(&lrmesh(&[
+            "encode",
+            &mesh,
+            "-o",
+            auto.to_str().unwrap(),
+            "--json",
+        ]))
+        .stdout,
+    );
+    assert_eq!(auto["orientation"]["automatic"], true);
+    assert_eq!(auto["orientation"]["recorded"], true);
+    assert_eq!(
+        auto["orientation"]["reversed_triangles"],
+        after["orientation"]["reversed_triangles"]
+    );
+    assert!(rpt(&auto) < 1.3 && auto["bytes"].as_u64() < before["bytes"].as_u64());
+    assert_eq!(auto["hints"], serde_json::json!([]));
     // Decoding gives back the input's triangles.
     let off = scratch("shuffled-back.off");
     ok(&lrmesh(&[

@@ -9,12 +9,14 @@ use lrmesh::generate::{self, Rng};
 use lrmesh::io::{read_mesh, ReadOptions};
 use lrmesh::lr::{CompactLr, CompactOptions, LrLayout};
 use lrmesh::read::{open, Limits};
-use lrmesh::write::{encode, Connectivity, EncodeOptions};
+use lrmesh::write::{encode, Connectivity, EncodeOptions, Orient};
 use lrmesh::{CornerOps, CornerTable, Mesh};
 
+/// As given, so that the owned structures of the same mesh are the file's.
 fn options() -> EncodeOptions {
     EncodeOptions {
         connectivity: Connectivity::LrCompact,
+        orient: Orient::AsGiven,
         ..EncodeOptions::default()
     }
 }

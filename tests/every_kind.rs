@@ -11,7 +11,7 @@ use std::collections::BTreeMap;
 use common::corpus_dir;
 use lrmesh::mesh::{Attribute, Semantic};
 use lrmesh::ops::CornerOps;
-use lrmesh::write::{encode, Connectivity, EncodeOptions};
+use lrmesh::write::{encode, Connectivity, EncodeOptions, Orient};
 use lrmesh::{generate, CornerTable, Mesh, Vertex};
 
 /// The corners met swinging from `v.c` with `c.s` alone, stopping at a boundary or back at
@@ -82,6 +82,8 @@ fn check_every_kind(mesh: &Mesh, name: &str) {
         let options = EncodeOptions {
             connectivity: kind,
             keep_order: true,
+            // As given: the fans expected are the input's.
+            orient: Orient::AsGiven,
             ..EncodeOptions::default()
         };
         let bytes = encode(mesh, &options).unwrap();

@@ -191,3 +191,60 @@ fn encoding_an_oriented_mesh_gives_the_same_bytes() {
         );
     }
 }
+
+/// The default, [`Orient::Auto`]: a mesh written with mixed orientations is stored repaired
+/// when that makes the smaller file (the shuffled blobby, every kind, with `FLIP`: decoding
+/// gives back the input's triangles); a mesh whose only fault is one reversed triangle, and
+/// a consistent mesh, are stored as given by the LR kinds, byte for byte as
+/// [`Orient::AsGiven`] stores them.
+#[test]
+fn auto_keeps_the_smaller_file() {
+    let size = |mesh: &Mesh, options: &EncodeOptions| encode(mesh, options).unwrap().len();
+    let mesh = shuffled();
+    for connectivity in Connectivity::ALL {
+        let what = format!("{connectivity:?}");
+        let auto = encode(&mesh, &options(connectivity, false, Orient::Auto)).unwrap();
+        let as_given = size(&mesh, &options(connectivity, false, Orient::AsGiven));
+        let repaired = size(&mesh, &options(connectivity, false, Orient::Repair));
+        assert_eq!(auto.len(), repaired.min(as_given), "{what}");
+        // The writer that takes the mesh (and frees its triangles once the corner table holds
+        // them) gets them back from the table to try both.
+        let owned = options(connectivity, false, Orient::Auto);
+        assert!(
+            lrmesh::write::encode_owned(mesh.clone(), &owned).unwrap() == auto,
+            "{what}"
+        );
+        assert!(
+            2 * auto.len() < as_given,
+            "{what}: {} of {as_given}",
+            auto.len()
+        );
+        let container = open_verified(&auto, &Limits::default()).unwrap();
+        assert!(container.sections.section(Tag::FLIP).is_some(), "{what}");
+        assert_eq!(
+            by_position(&container.to_mesh()),
+            by_position(&mesh),
+            "{what}"
+        );
+    }
+    // One reversed triangle of a torus: a bit per triangle costs the LR kinds more than what
+    // the cut costs them (the strips lose more to it: there the repaired file is smaller);
+    // a consistent torus has nothing to repair.
+    let mut one = lrmesh::generate::torus(30, 40);
+    one.triangles[100].swap(1, 2);
+    let consistent = lrmesh::generate::torus(12, 9);
+    for (mesh, name) in [(one, "one reversed"), (consistent, "consistent")] {
+        for connectivity in Connectivity::ALL {
+            let what = format!("{name}, {connectivity:?}");
+            let auto = encode(&mesh, &options(connectivity, false, Orient::Auto)).unwrap();
+            let as_given = encode(&mesh, &options(connectivity, false, Orient::AsGiven)).unwrap();
+            let repaired = size(&mesh, &options(connectivity, false, Orient::Repair));
+            assert_eq!(auto.len(), repaired.min(as_given.len()), "{what}");
+            if name == "consistent"
+                || [Connectivity::Lr, Connectivity::Zipper].contains(&connectivity)
+            {
+                assert!(auto == as_given, "{what}");
+            }
+        }
+    }
+}

@@ -152,10 +152,11 @@ fn check_cts(mesh: &Mesh, options: &StripOptions) -> Cts {
 /// answer every operator as the owned ones do, and decode to the input's triangles.
 fn check_cts_container(mesh: &Mesh) {
     use lrmesh::read::{open, Limits};
-    use lrmesh::write::{encode, Connectivity, EncodeOptions};
+    use lrmesh::write::{encode, Connectivity, EncodeOptions, Orient};
     let options = EncodeOptions {
         connectivity: Connectivity::Strips,
         keep_order: true,
+        orient: Orient::AsGiven,
         ..EncodeOptions::default()
     };
     let bytes = encode(mesh, &options).unwrap();

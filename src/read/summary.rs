@@ -49,7 +49,7 @@ pub struct ContainerSummary {
     pub t0_triangles: Option<u32>,
     /// LR only: VO* records (irregular triangles).
     pub irregular_triangles: Option<u32>,
-    /// Bytes of connectivity: the connectivity section, COPY and KEPT.
+    /// Bytes of connectivity: the connectivity section, COPY, KEPT and FLIP.
     pub connectivity_bytes: u64,
     /// Connectivity bits per triangle.
     pub connectivity_bpt: f64,
@@ -123,9 +123,9 @@ fn attribute_name(semantic: &Semantic) -> String {
     }
 }
 
-/// The sections of the connectivity (`connectivity_bytes`): its tables, copies and kept
-/// triangles.
-const CONNECTIVITY: [Tag; 9] = [
+/// The sections of the connectivity (`connectivity_bytes`): its tables, copies, kept
+/// triangles and the triangles reversed on decoding (their orientation is connectivity too).
+const CONNECTIVITY: [Tag; 10] = [
     Tag::LRTB,
     Tag::EBRK,
     Tag::STRP,
@@ -135,6 +135,7 @@ const CONNECTIVITY: [Tag; 9] = [
     Tag::COPC,
     Tag::KEPT,
     Tag::KEPC,
+    Tag::FLIP,
 ];
 
 /// Bytes of the connectivity's sections.

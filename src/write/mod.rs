@@ -56,8 +56,14 @@ impl Connectivity {
 /// a mesh with mixed orientations costs every representation more.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Orient {
-    /// The triangles as given.
+    /// [`Orient::Repair`] when it makes the file smaller: a mesh whose corner table cuts an
+    /// edge two triangles use in the same direction is also encoded repaired, with `FLIP`
+    /// (one bit per triangle), and the smaller file is kept; any other mesh as given, at no
+    /// cost. Either way decoding gives back the input's triangles. (A connectivity built
+    /// already, [`encode_built`], is stored as given.)
     #[default]
+    Auto,
+    /// The triangles as given.
     AsGiven,
     /// Reverse triangles as [`crate::mesh::orient`] says, and record them in section `FLIP`
     /// so that decoding gives back the input's triangles; the corner operators answer on
@@ -118,7 +124,7 @@ impl Default for EncodeOptions {
             tip_bases: None,
             strips: StripOptions::default(),
             keep_order: false,
-            orient: Orient::AsGiven,
+            orient: Orient::Auto,
             position_bits: None,
             level: DEFAULT_LEVEL,
             normal_bits: None,
@@ -192,7 +198,7 @@ pub fn encode_owned(mut mesh: Mesh, options: &EncodeOptions) -> Result<Vec<u8>> 
     let needs_triangles = !mesh.attributes.is_empty()
         || mesh.parts.is_some()
         || options.keep_order
-        || options.orient != Orient::AsGiven;
+        || repairs(options.orient);
     if needs_triangles {
         return encode(&mesh, options);
     }
@@ -204,6 +210,12 @@ pub fn encode_owned(mut mesh: Mesh, options: &EncodeOptions) -> Result<Vec<u8>> 
     let owned = std::mem::take(&mut mesh.triangles);
     let triangles = owned.len();
     let table = CornerTable::from_triangles(mesh.positions.len(), owned)?;
+    if options.orient == Orient::Auto && table.conversion().cut_inconsistent_edges > 0 {
+        // Both ways, from the triangles given back (the mesh is in its encoding order now).
+        mesh.triangles = table.input_triangles();
+        drop(table);
+        return encode(&mesh, options);
+    }
     Ok(assemble(&sections(
         &mesh,
         triangles,
@@ -244,10 +256,15 @@ pub fn encode_oriented(oriented: &Oriented, options: &EncodeOptions) -> Result<V
 /// ask.
 fn table_sections(mesh: &Mesh, options: &EncodeOptions) -> Result<Vec<SectionBytes>> {
     mesh.validate()?;
-    if options.orient != Orient::AsGiven {
+    if repairs(options.orient) {
         return oriented_sections(&crate::mesh::orient(mesh), options);
     }
     table_sections_of(mesh, options, None)
+}
+
+/// Whether `orient` always repairs the orientation.
+fn repairs(orient: Orient) -> bool {
+    matches!(orient, Orient::Repair | Orient::RepairAndKeep)
 }
 
 /// The order the encoders put `mesh` in before building its connectivity: a cache-friendly
@@ -312,13 +329,30 @@ fn ordered_sections(
     flipped: Option<&[bool]>,
 ) -> Result<Vec<SectionBytes>> {
     let table = CornerTable::from_mesh(mesh)?;
-    sections(
-        mesh,
-        mesh.triangles.len(),
-        Source::Table(table),
-        options,
-        flipped,
-    )
+    let inconsistent = table.conversion().cut_inconsistent_edges;
+    let n = mesh.triangles.len();
+    let as_given = sections(mesh, n, Source::Table(table), options, flipped)?;
+    if options.orient != Orient::Auto || inconsistent == 0 {
+        return Ok(as_given);
+    }
+    // [`Orient::Auto`]: the repaired mesh too, its reversed triangles in `FLIP`.
+    let oriented = crate::mesh::orient(mesh);
+    if oriented.flipped_count() == 0 {
+        return Ok(as_given);
+    }
+    let table = CornerTable::from_mesh(&oriented.mesh)?;
+    let flipped = Some(oriented.flipped.as_slice());
+    let repaired = sections(&oriented.mesh, n, Source::Table(table), options, flipped)?;
+    // The files' lengths but for their common header: payloads and section table entries.
+    let bytes = |s: &[SectionBytes]| {
+        s.iter()
+            .map(|s| s.2.len() + crate::format::ENTRY_LEN)
+            .sum::<usize>()
+    };
+    Ok(match bytes(&repaired) < bytes(&as_given) {
+        true => repaired,
+        false => as_given,
+    })
 }
 
 /// Every section of the repaired mesh of `oriented`, with `FLIP` as [`encode_oriented`] says.
@@ -341,7 +375,7 @@ fn oriented_sections(oriented: &Oriented, options: &EncodeOptions) -> Result<Vec
 /// orient the mesh first with [`crate::mesh::orient`]).
 pub fn encode_built(mesh: &Mesh, built: Built, options: &EncodeOptions) -> Result<Vec<u8>> {
     mesh.validate()?;
-    if options.orient != Orient::AsGiven {
+    if repairs(options.orient) {
         return Err(Error::InvalidArgument(
             "a connectivity built already cannot be oriented: orient the mesh before building"
                 .into(),

@@ -73,6 +73,11 @@ pub struct Args {
     /// With --orient: decoding gives the repaired triangles instead of the input's
     #[arg(long, requires = "orient")]
     keep_repaired: bool,
+    /// Store the triangles as given. Without --orient or this option, a mesh with edges two
+    /// triangles use in the same direction is also encoded as --orient does, and the
+    /// smaller file kept
+    #[arg(long, conflicts_with = "orient")]
+    no_orient: bool,
     /// Print one JSON object instead of text: the container's figures as `lrmesh info
     /// --json` gives them (`container`), with `output`, `bytes`, `read_ms`, `encode_ms`,
     /// `write_ms`, `orientation` and `hints`
@@ -104,7 +109,8 @@ struct EncodeReport {
     read_ms: f64,
     encode_ms: f64,
     write_ms: f64,
-    /// With --orient: triangles reversed, and edges that still disagree (a Möbius band).
+    /// With --orient, or when the file was smaller so: triangles reversed, and edges that
+    /// still disagree (a Möbius band).
     orientation: Option<Orientation>,
     hints: Vec<String>,
     container: lrmesh::read::ContainerSummary,
@@ -115,6 +121,8 @@ struct Orientation {
     reversed_triangles: usize,
     conflicts: usize,
     recorded: bool,
+    /// Chosen by the encoder (no --orient) because the file was smaller so.
+    automatic: bool,
 }
 
 pub fn run(args: Args) -> lrmesh::Result<()> {
@@ -142,10 +150,11 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
         texcoord_bits: args.quantize_texcoord,
         color_bits: args.quantize_color,
         level: args.level,
-        orient: match (args.orient, args.keep_repaired) {
-            (false, _) => Orient::AsGiven,
-            (true, false) => Orient::Repair,
-            (true, true) => Orient::RepairAndKeep,
+        orient: match (args.orient, args.keep_repaired, args.no_orient) {
+            (false, _, false) => Orient::Auto,
+            (false, _, true) => Orient::AsGiven,
+            (true, false, _) => Orient::Repair,
+            (true, true, _) => Orient::RepairAndKeep,
         },
         ..EncodeOptions::default()
     };
@@ -159,16 +168,18 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
     let mesh = write::in_encoding_order(mesh, &options)?;
     // Oriented here once, for the report and for the writer.
     let oriented = args.orient.then(|| lrmesh::mesh::orient(&mesh));
-    let orientation = oriented.as_ref().map(|o| Orientation {
+    let mut orientation = oriented.as_ref().map(|o| Orientation {
         reversed_triangles: o.flipped_count(),
         conflicts: o.conflicts,
         recorded: !args.keep_repaired && o.flipped_count() > 0,
+        automatic: false,
     });
-    let hints = hints(
-        &lrmesh::TopologyReport::of(&mesh),
-        args.orient,
-        args.input.weld,
-    );
+    let topology = lrmesh::TopologyReport::of(&mesh);
+    // What the encoder's own choice would repair, for the report (only a mesh with such
+    // edges is oriented again).
+    let auto = options.orient == Orient::Auto && topology.inconsistent_edges > 0;
+    let conflicts = auto.then(|| lrmesh::mesh::orient(&mesh).conflicts);
+    let hints = hints(&topology, args.orient || auto, args.input.weld);
     let started = Instant::now();
     let bytes = progress::step("encoding", || match &oriented {
         Some(o) => write::encode_oriented(o, &options),
@@ -181,6 +192,14 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
     write_out(output, &bytes)?;
     let write_ms = ms(started.elapsed());
     let summary = read::open(&bytes, &Limits::default())?.summary();
+    if let (Some(conflicts), true) = (conflicts, summary.reversed_triangles > 0) {
+        orientation = Some(Orientation {
+            reversed_triangles: summary.reversed_triangles as usize,
+            conflicts,
+            recorded: true,
+            automatic: true,
+        });
+    }
     if args.json {
         report.json(&EncodeReport {
             output: output.display().to_string(),
@@ -225,7 +244,12 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
     ));
     if let Some(o) = &orientation {
         say(format!(
-            "orientation repaired: {} triangles reversed{}{}",
+            "orientation repaired{}: {} triangles reversed{}{}",
+            if o.automatic {
+                " (the smaller file)"
+            } else {
+                ""
+            },
             o.reversed_triangles,
             if o.recorded {
                 " (decoding reverses them back)"
