@@ -272,9 +272,10 @@ impl<'a> BlockedView<'a> {
         let anchor_bits = if WB == 6 { 32 } else { s.anchor_bits };
         let widths_at = s.start_bits + 3 * anchor_bits;
         let mut next = 0;
+        let mut tail = [0u8; WINDOW_LEN];
         for j in 0..records {
             let at = self.record(j);
-            let window = RecordWindow::new(self.dir, at);
+            let window = RecordWindow::new(self.dir, at, &mut tail);
             let bit = (at % 8) as u32;
             let mut ok = window.bits(bit, s.start_bits) == next;
             if WB == 6 {
@@ -388,24 +389,29 @@ impl<'a> BlockedView<'a> {
     }
 }
 
-/// Bytes of a directory record from its first byte, enough for any shape (a start of up to
-/// 56 bits, three 32-bit anchors, 24 widths of 6 bits, 7 bits of offset in the first byte)
-/// and an 8-byte read at the last field; bytes past the directory read as 0.
-struct RecordWindow([u8; RecordWindow::LEN]);
+/// Bytes of a [`RecordWindow`]: enough for any shape (a start of up to 56 bits, three 32-bit
+/// anchors, 24 widths of 6 bits, 7 bits of offset in the first byte) and an 8-byte read at
+/// the last field.
+const WINDOW_LEN: usize = 48;
 
-impl RecordWindow {
-    const LEN: usize = 48;
+/// Bytes of a directory record from its first byte; bytes past the directory read as 0. The
+/// directory's own bytes where it has [`WINDOW_LEN`] of them (a copy to the stack cost a
+/// stalled load per field, eight-byte reads straddling the copy's stores), else a copy of
+/// its tail padded with 0.
+struct RecordWindow<'a>(&'a [u8; WINDOW_LEN]);
 
+impl<'a> RecordWindow<'a> {
+    /// The window at bit `at` of `dir`; `tail` holds it when the directory ends within it.
     #[inline(always)]
-    fn new(dir: &[u8], at: u64) -> RecordWindow {
+    fn new(dir: &'a [u8], at: u64, tail: &'a mut [u8; WINDOW_LEN]) -> RecordWindow<'a> {
         let byte = (at / 8) as usize;
-        match dir.get(byte..byte + Self::LEN) {
-            Some(bytes) => RecordWindow(bytes.try_into().expect("LEN bytes")),
+        match dir.get(byte..byte + WINDOW_LEN) {
+            Some(bytes) => RecordWindow(bytes.try_into().expect("WINDOW_LEN bytes")),
             None => {
-                let mut window = [0u8; Self::LEN];
+                *tail = [0u8; WINDOW_LEN];
                 let rest = dir.get(byte..).unwrap_or_default();
-                window[..rest.len()].copy_from_slice(rest);
-                RecordWindow(window)
+                tail[..rest.len()].copy_from_slice(rest);
+                RecordWindow(tail)
             }
         }
     }
