@@ -48,7 +48,8 @@ pub fn hints(report: &TopologyReport, orient: bool, weld: bool) -> Vec<String> {
     if !orient && report.inconsistent_edges > 0 {
         out.push(format!(
             "{} edges run twice in the same direction (inconsistent orientation), which cuts \
-             the surface there: --orient repairs it",
+             the surface there: --orient repairs it (encode does when the file is smaller \
+             so, unless --no-orient)",
             report.inconsistent_edges
         ));
     }
