@@ -419,38 +419,61 @@ fn zero_width_lists_of_any_length() {
     }
 }
 
-/// [V19] on one ring: two left slots two apart made redundant copies (symbol 5, tip
-/// `v.n.n`), so that the first jumps to a slot with no canonical triangle, the next delta
-/// slot of the side taking their deltas so that every chain stays as it was. The well-formed
-/// open checks [V19] on the slots' bit vectors a word at a time, the last two slots with the
-/// wrap: pairs within a word, across words and blocks, and across the end.
+/// `bytes` with left slots `t` and `t + 2` of a ring of `slots` slots (mod `slots`, `t`
+/// not at the ring's end otherwise) made redundant copies (symbol 5, tip `v.n.n`), so that
+/// the first jumps to a slot with no canonical triangle, the next delta slot of the side
+/// taking their deltas so that every chain stays as it was; `None` when their symbols do not
+/// allow it.
+fn jump_to_a_redundant_slot(bytes: &[u8], t: usize, slots: usize) -> Option<Vec<u8>> {
+    let block = |t: usize| t / 128;
+    let [a, b, c] = [t, t + 2, t + 4].map(|x| x % slots);
+    let s = [a, b, c].map(|x| symbol(bytes, x));
+    // The deltas the third slot takes: those of the first two in its block (a block's chain
+    // starts from its anchor).
+    let taken: u32 = [(a, s[0]), (b, s[1])]
+        .iter()
+        .filter(|&&(x, _)| block(x) == block(c))
+        .map(|&(_, d)| d)
+        .sum();
+    if s.iter().any(|&d| d > 3) || s[2] + taken > 3 {
+        return None;
+    }
+    let bad = set_symbol(&set_symbol(bytes, a, 5), b, 5);
+    Some(set_symbol(&bad, c, s[2] + taken))
+}
+
+/// [V19]: a slot that jumps to one with no canonical triangle. On one ring the well-formed
+/// open checks it on the slots' bit vectors a word at a time, the last two slots with the
+/// wrap: pairs within a word, across words and blocks, and across the end. With two rings
+/// it follows each jumping slot to its ring's next: a pair in each ring.
 #[test]
 fn v19_jump_to_a_redundant_slot() {
-    let bytes = encoded(
-        &lrmesh::generate::torus(24, 30),
-        lrmesh::write::Connectivity::Zipper,
-    );
+    use lrmesh::generate::{append, torus};
+    use lrmesh::write::Connectivity::Zipper;
+    let bytes = encoded(&torus(24, 30), Zipper);
     let slots = 2 * ZiprHeader::read(&payload(&bytes, Tag::ZIPR)).m_r as usize;
     assert!(slots > 3 * 128, "several blocks");
-    let block = |t: usize| t / 128;
     let mut tested = 0;
     for t in [4, 60, 62, 126, 254, slots - 2] {
-        let [a, b, c] = [t, t + 2, t + 4].map(|x| x % slots);
-        let s = [a, b, c].map(|x| symbol(&bytes, x));
-        // The deltas the third slot takes: those of the first two in its block (a block's
-        // chain starts from its anchor).
-        let taken: u32 = [(a, s[0]), (b, s[1])]
-            .iter()
-            .filter(|&&(x, _)| block(x) == block(c))
-            .map(|&(_, d)| d)
-            .sum();
-        if s.iter().any(|&d| d > 3) || s[2] + taken > 3 {
-            continue;
+        if let Some(bad) = jump_to_a_redundant_slot(&bytes, t, slots) {
+            assert_eq!(format_error(&bad).rule, Rule(19), "slot {t}");
+            tested += 1;
         }
-        let bad = set_symbol(&set_symbol(&bytes, a, 5), b, 5);
-        let bad = set_symbol(&bad, c, s[2] + taken);
-        assert_eq!(format_error(&bad).rule, Rule(19), "slot {t}");
-        tested += 1;
     }
-    assert!(tested >= 4, "only {tested} slots tested");
+    assert!(tested >= 4, "only {tested} slots tested on one ring");
+    let mut two = torus(20, 24);
+    append(&mut two, &torus(16, 20));
+    let bytes = encoded(&two, Zipper);
+    let header = ZiprHeader::read(&payload(&bytes, Tag::ZIPR));
+    assert_eq!(header.rings, 2);
+    let second = 2 * zipr_get(&bytes, 0, 1) as usize; // ring_starts[1], as a slot
+    let slots = 2 * header.m_r as usize;
+    let mut tested = 0;
+    for t in [20, 130, second + 40, second + 200] {
+        if let Some(bad) = jump_to_a_redundant_slot(&bytes, t, slots) {
+            assert_eq!(format_error(&bad).rule, Rule(19), "slot {t} of two rings");
+            tested += 1;
+        }
+    }
+    assert!(tested >= 2, "only {tested} slots tested on two rings");
 }
