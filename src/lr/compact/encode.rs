@@ -273,7 +273,7 @@ impl CompactLr {
         }
         Ok(CompactLr {
             tables,
-            lr,
+            lr: lr.into_input_maps(),
             period,
             t0_standard,
         })

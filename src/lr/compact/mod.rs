@@ -42,7 +42,7 @@ mod tables;
 pub use stats::CompactStats;
 pub use tables::CompactTables;
 
-use super::{Lr, LrCounts, LrOptions};
+use super::{InputMaps, LrCounts, LrOptions};
 use crate::ids::{Triangle, Vertex};
 use tables::stored_bytes;
 
@@ -118,8 +118,8 @@ impl Default for CompactOptions {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct CompactLr {
     tables: CompactTables<Vec<u32>, Vec<u16>>,
-    /// The standard LR it encodes: vertex ids, counts and the maps to the input.
-    lr: Lr,
+    /// Of the standard LR it encodes: the counts and the maps to the input.
+    lr: InputMaps,
     /// The HYBRID-RING-EXPANDER period of `lr` (0: depth first).
     period: u32,
     /// Compact T0 row -> standard T0 row.

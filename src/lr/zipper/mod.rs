@@ -45,7 +45,7 @@ pub(crate) use tables::Slot;
 pub(crate) use tables::LEFT_SLOTS;
 pub use tables::{plane_array_words, ZipperTables};
 
-use super::{Lr, LrCounts, LrOptions};
+use super::{InputMaps, Lr, LrCounts, LrOptions};
 use crate::corner_table::CornerTable;
 use crate::error::Result;
 use crate::ids::{Triangle, Vertex};
@@ -102,8 +102,9 @@ pub const EXPLICIT_SHIFT: u32 = 6;
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Zipper {
     tables: ZipperTables<Vec<u32>>,
-    /// The standard LR it encodes: vertex and triangle ids, counts and the maps to the input.
-    lr: Lr,
+    /// Of the standard LR it encodes (the same vertex and triangle ids): the counts and the
+    /// maps to the input.
+    lr: InputMaps,
 }
 
 impl Zipper {
@@ -123,6 +124,7 @@ impl Zipper {
     /// opposites than their code words can index (2^26).
     pub fn encode(lr: Lr) -> Result<Zipper> {
         let tables = encode::encode(lr.tables())?;
+        let lr = lr.into_input_maps();
         Ok(Zipper { tables, lr })
     }
 
