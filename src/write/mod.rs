@@ -58,8 +58,8 @@ impl Connectivity {
 pub enum Orient {
     /// [`Orient::Repair`] when it makes the file smaller: a mesh whose corner table cuts an
     /// edge two triangles use in the same direction is also encoded repaired, with `FLIP`
-    /// (one bit per triangle), and the smaller file is kept; any other mesh as given, at no
-    /// cost. Either way decoding gives back the input's triangles. (A connectivity built
+    /// (one bit per triangle), and the smaller file is kept (such a mesh is encoded twice);
+    /// any other mesh as given, at no cost. Either way decoding gives back the input's triangles. (A connectivity built
     /// already, [`encode_built`], is stored as given.)
     #[default]
     Auto,
