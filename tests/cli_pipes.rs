@@ -229,33 +229,19 @@ fn orient_repairs_the_shuffled_mesh_and_gives_it_back() {
             .any(|h| h.as_str().unwrap().contains("--orient")),
         "{hints:?}"
     );
-    let plain = scratch("shuffled.lrm");
-    let oriented = scratch("shuffled-oriented.lrm");
-    let before = json(
-        &ok(&lrmesh(&[
-            "encode",
-            &mesh,
-            "-o",
-            plain.to_str().unwrap(),
-            "--json",
-            "--no-orient",
-        ]))
-        .stdout,
-    );
+    // `encode MESH -o NAME --json EXTRA`: the file written and the report.
+    let encode = |name: &str, extra: &[&str]| {
+        let out = scratch(name);
+        let path = out.to_string_lossy().into_owned();
+        let mut args = vec!["encode", mesh.as_str(), "-o", path.as_str(), "--json"];
+        args.extend_from_slice(extra);
+        let report = json(&ok(&lrmesh(&args)).stdout);
+        (out, report)
+    };
+    let (_, before) = encode("shuffled.lrm", &["--no-orient"]);
     assert!(before["hints"].as_array().unwrap().len() == 1);
     assert_eq!(before["orientation"], serde_json::Value::Null);
-    let after = json(
-        &ok(&lrmesh(&[
-            "encode",
-            &mesh,
-            "-o",
-            oriented.to_str().unwrap(),
-            "--json",
-            "--orient",
-            "--keep-order",
-        ]))
-        .stdout,
-    );
+    let (oriented, after) = encode("shuffled-oriented.lrm", &["--orient", "--keep-order"]);
     let rpt = |r: &serde_json::Value| r["container"]["rpt"].as_f64().unwrap();
     // A closed genus-0 surface of this regularity: about 1.24 (3.9 as given).
     assert!(
@@ -270,17 +256,7 @@ fn orient_repairs_the_shuffled_mesh_and_gives_it_back() {
     assert_eq!(after["hints"], serde_json::json!([]));
     // Without either option the encoder repairs it too, the file being smaller so (with the
     // reversed triangles recorded), and says so.
-    let auto = scratch("shuffled-auto.lrm");
-    let auto = json(
-        &ok(&lrmesh(&[
-            "encode",
-            &mesh,
-            "-o",
-            auto.to_str().unwrap(),
-            "--json",
-        ]))
-        .stdout,
-    );
+    let (_, auto) = encode("shuffled-auto.lrm", &[]);
     assert_eq!(auto["orientation"]["automatic"], true);
     assert_eq!(auto["orientation"]["recorded"], true);
     assert_eq!(

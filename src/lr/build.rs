@@ -6,7 +6,7 @@ use super::ring::{Prepared, Rings};
 use super::tables::{
     boundaries_on_ring_given, ring_bits, LrLayout, LrTables, LEFT, NULL, RIGHT, VALUE, WART,
 };
-use super::{Lr, LrCounts, LrOptions};
+use super::{InputMaps, Lr, LrCounts, LrOptions};
 use crate::corner_table::{CornerTable, NONE};
 use crate::error::{Error, Result};
 use crate::ids::{Triangle, Vertex};
@@ -187,12 +187,12 @@ impl Lr {
         tables.vo_v.reserve(3 * t0_count as usize);
         let mut lr_struct = Lr {
             tables,
-            counts: LrCounts::default(),
-            vertex_input: Vec::new(),
-            triangle_input: Vec::new(),
+            maps: InputMaps {
+                kept_aside: ct.kept_aside().to_vec(),
+                ..InputMaps::default()
+            },
             input_vertex_lr: Vec::new(),
             input_triangle_lr: Vec::new(),
-            kept_aside: ct.kept_aside().to_vec(),
         };
         let mut false_redundant = Vec::new();
         for (slot, &tip) in slot_tip_corner.iter().enumerate() {
@@ -300,7 +300,7 @@ impl Lr {
         let without_opposite = ct.o_table().iter().filter(|&&o| o == NONE).count();
         lr_struct.tables.boundaries_on_ring =
             boundaries_on_ring_given(&lr_struct.tables, without_opposite);
-        lr_struct.counts = LrCounts {
+        lr_struct.maps.counts = LrCounts {
             triangles: nt_real as u32,
             vertices: real_vertices,
             ring_vertices: m_r,
@@ -338,17 +338,17 @@ impl Partial {
             lr_vertex,
             triangle_lr,
         } = self;
-        let m = lr_struct.counts.vertices;
-        let m_r = lr_struct.counts.ring_vertices;
+        let m = lr_struct.maps.counts.vertices;
+        let m_r = lr_struct.maps.counts.ring_vertices;
         let ct_to_lr = |c: u32| match triangle_lr[c as usize / 3] {
             NONE => NONE,
             w => (w & !3) + (c % 3 + (w & 3)) % 3,
         };
         lr_struct.tables.c = vec![NONE; (m - m_r) as usize];
-        lr_struct.vertex_input = vec![0; m as usize];
+        lr_struct.maps.vertex_input = vec![0; m as usize];
         for x in 0..m {
             let id = lr_vertex[x as usize];
-            lr_struct.vertex_input[id as usize] = ct.original_vertex(Vertex(x)).0;
+            lr_struct.maps.vertex_input[id as usize] = ct.original_vertex(Vertex(x)).0;
             if id >= m_r {
                 let c = ct.c_table()[x as usize];
                 lr_struct.tables.c[(id - m_r) as usize] =
@@ -361,16 +361,16 @@ impl Partial {
         }
         drop(lr_vertex);
         let ids = 2 * m_r as usize + lr_struct.tables.t0_count() as usize;
-        lr_struct.triangle_input = vec![NONE; ids];
+        lr_struct.maps.triangle_input = vec![NONE; ids];
         for (t, &w) in triangle_lr.iter().enumerate() {
-            lr_struct.triangle_input[(w / 4) as usize] = ct.input_triangle(Triangle(t as u32));
+            lr_struct.maps.triangle_input[(w / 4) as usize] = ct.input_triangle(Triangle(t as u32));
         }
         drop(triangle_lr);
         // The inverse of `triangle_input` (ids of redundant slots and missing right
         // triangles hold NONE).
-        let inputs = lr_struct.counts.triangles as usize + ct.kept_aside().len();
+        let inputs = lr_struct.maps.counts.triangles as usize + ct.kept_aside().len();
         lr_struct.input_triangle_lr = vec![NONE; inputs];
-        for (id, &input) in lr_struct.triangle_input.iter().enumerate() {
+        for (id, &input) in lr_struct.maps.triangle_input.iter().enumerate() {
             if input != NONE {
                 lr_struct.input_triangle_lr[input as usize] = id as u32;
             }

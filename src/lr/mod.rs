@@ -126,23 +126,19 @@ impl LrCounts {
 pub struct Lr {
     /// The tables the operators read.
     tables: LrTables<Vec<u32>>,
-    counts: LrCounts,
-    /// LR vertex -> input vertex.
-    vertex_input: Vec<u32>,
-    /// LR triangle id -> input triangle (`NONE` for ids that are not canonical triangles).
-    triangle_input: Vec<u32>,
+    /// The counts and the maps to the input.
+    maps: InputMaps,
     /// Input vertex -> an LR vertex standing for it (the first fan's, for split vertices).
     input_vertex_lr: Vec<u32>,
     /// Input triangle -> LR triangle (`NONE` for degenerate triangles, kept aside).
     input_triangle_lr: Vec<u32>,
-    /// Degenerate input triangles: `(input index, input vertex triple)`.
-    kept_aside: Vec<(u32, [u32; 3])>,
 }
 
-/// What a layout encoded from a standard LR (the bit-efficient LR, the Zipper) keeps of it:
-/// its counts and the maps to the input. Not its tables nor the maps from the input, which
-/// the layouts do not read: the owned Zipper of the 3.3M-triangle armadillo holds 33 MB less.
-#[derive(Debug, Clone, PartialEq, Eq)]
+/// An LR's counts and maps to the input: what a layout encoded from a standard LR (the
+/// bit-efficient LR, the Zipper) keeps of it. Not its tables nor the maps from the input,
+/// which the layouts do not read: the owned Zipper of the 3.3M-triangle armadillo holds 33 MB
+/// less.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub(crate) struct InputMaps {
     counts: LrCounts,
     /// LR vertex -> input vertex.
@@ -178,12 +174,7 @@ impl InputMaps {
 impl Lr {
     /// The counts and maps to the input, the rest dropped ([`InputMaps`]).
     pub(crate) fn into_input_maps(self) -> InputMaps {
-        InputMaps {
-            counts: self.counts,
-            vertex_input: self.vertex_input,
-            triangle_input: self.triangle_input,
-            kept_aside: self.kept_aside,
-        }
+        self.maps
     }
 
     /// Gives slot `slot` a VO* record `(tip, o_a, o_b)` and the IRREGULAR flag.
@@ -200,17 +191,17 @@ impl Lr {
 
     /// The Table 1 counts of this LR.
     pub fn counts(&self) -> LrCounts {
-        self.counts
+        self.maps.counts()
     }
 
     /// The input vertex that LR vertex `v` stands for.
     pub fn input_vertex(&self, v: Vertex) -> u32 {
-        self.vertex_input[v.idx()]
+        self.maps.input_vertex(v)
     }
 
     /// The input triangle that canonical LR triangle `t` stands for.
     pub fn input_triangle(&self, t: Triangle) -> u32 {
-        self.triangle_input[t.idx()]
+        self.maps.input_triangle(t)
     }
 
     /// An LR vertex that input vertex `v` became (the first fan's, for a vertex that the
@@ -229,7 +220,7 @@ impl Lr {
 
     /// Degenerate input triangles, kept aside: `(input index, input vertex triple)`.
     pub fn kept_aside(&self) -> &[(u32, [u32; 3])] {
-        &self.kept_aside
+        self.maps.kept_aside()
     }
 
     /// The input triangles, in input order, from the LR alone. Each comes back with the same
@@ -238,7 +229,7 @@ impl Lr {
         input_triangles_of(
             self,
             self.input_triangle_lr.len(),
-            &self.kept_aside,
+            self.kept_aside(),
             |v| self.input_vertex(v),
             |t| self.input_triangle(t),
         )

@@ -86,9 +86,9 @@ pub(super) struct SlotMap {
 enum SlotFlags {
     /// A byte per slot: the passes of the LR layouts are plain maps the compiler vectorizes.
     Bytes(Vec<u8>),
-    /// Two bit vectors (slot `k` is bit `k mod 64` of word `k / 64`, bits past the last slot
-    /// 0): the Zipper's pass finds the flags as masks of its blocks, and a quarter of the
-    /// bytes to write made a tenth of its open.
+    /// Two bit vectors, interleaved per 64 slots ([`SlotBits`]; bits past the last slot 0):
+    /// the Zipper's pass finds the flags as masks of its blocks, and a quarter of the bytes
+    /// to write made a tenth of its open.
     Bits(SlotBits),
 }
 

@@ -308,7 +308,7 @@ fn below(k: usize) -> u128 {
     u128::MAX.checked_shr(128 - k as u32).unwrap_or(0)
 }
 
-/// [V58] on every slot, and the slot flags, in slot order, with the number of canonical ones;
+/// [V58] on every slot, and the slot flags as [`SlotBits`], with the number of canonical ones;
 /// `None` when the rule fails.
 pub(super) fn scan_slots(t: &Tables) -> Option<(SlotBits, u64)> {
     let (m, m_r) = (t.m, t.m_r);

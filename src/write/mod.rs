@@ -59,8 +59,8 @@ pub enum Orient {
     /// [`Orient::Repair`] when it makes the file smaller: a mesh whose corner table cuts an
     /// edge two triangles use in the same direction is also encoded repaired, with `FLIP`
     /// (one bit per triangle), and the smaller file is kept (such a mesh is encoded twice);
-    /// any other mesh as given, at no cost. Either way decoding gives back the input's triangles. (A connectivity built
-    /// already, [`encode_built`], is stored as given.)
+    /// any other mesh as given, at no cost. Either way decoding gives back the input's
+    /// triangles. (A connectivity built already, [`encode_built`], is stored as given.)
     #[default]
     Auto,
     /// The triangles as given.
@@ -211,10 +211,12 @@ pub fn encode_owned(mut mesh: Mesh, options: &EncodeOptions) -> Result<Vec<u8>> 
     let triangles = owned.len();
     let table = CornerTable::from_triangles(mesh.positions.len(), owned)?;
     if options.orient == Orient::Auto && table.conversion().cut_inconsistent_edges > 0 {
-        // Both ways, from the triangles given back (the mesh is in its encoding order now).
+        // The repaired mesh is made from the triangles, given back by the table (the mesh is
+        // in its encoding order now).
         mesh.triangles = table.input_triangles();
-        drop(table);
-        return encode(&mesh, options);
+        return Ok(assemble(&table_sections_of_built(
+            &mesh, table, options, None,
+        )?));
     }
     Ok(assemble(&sections(
         &mesh,
@@ -328,7 +330,18 @@ fn ordered_sections(
     options: &EncodeOptions,
     flipped: Option<&[bool]>,
 ) -> Result<Vec<SectionBytes>> {
-    let table = CornerTable::from_mesh(mesh)?;
+    table_sections_of_built(mesh, CornerTable::from_mesh(mesh)?, options, flipped)
+}
+
+/// The sections of `mesh` from its corner table `table`, `flipped` as [`sections`] takes it;
+/// with [`Orient::Auto`], when the table cut an inconsistent edge, those of the repaired mesh
+/// too, the smaller kept.
+fn table_sections_of_built(
+    mesh: &Mesh,
+    table: CornerTable,
+    options: &EncodeOptions,
+    flipped: Option<&[bool]>,
+) -> Result<Vec<SectionBytes>> {
     let inconsistent = table.conversion().cut_inconsistent_edges;
     let n = mesh.triangles.len();
     let as_given = sections(mesh, n, Source::Table(table), options, flipped)?;
