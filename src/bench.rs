@@ -3,7 +3,9 @@
 //! zero-copy view of the `.lrm` bytes), Edgebreaker and constrained strips. Size, build and open
 //! times, and the loops of the LR paper's Fig. 10 (c.v and c.o over every corner, valence and
 //! normal of every vertex, contour walks) as ratios to the corner table, all timed in the same
-//! process with [`std::time::Instant`], each step the median of several runs.
+//! process with [`std::time::Instant`], each step the median of several runs. The loops of all
+//! representations are timed in rounds ([`interleaved_loops`]), so that a drift in the
+//! machine's speed does not move one representation's figures against another's.
 //!
 //! The loops live here once, for this report and for the bench binaries.
 
@@ -27,19 +29,25 @@ use crate::write::{self, EncodeOptions};
 /// Within [`run`], each call is also recorded with its fastest and slowest run, under the
 /// step [`run`] is at (the report's `timings`).
 pub fn median_time<R>(runs: usize, mut f: impl FnMut() -> R) -> Duration {
-    let mut times: Vec<Duration> = (0..runs.max(1))
+    let times: Vec<Duration> = (0..runs.max(1))
         .map(|_| {
             let start = Instant::now();
             black_box(f());
             start.elapsed()
         })
         .collect();
+    record(None, times)
+}
+
+/// The median of `times`, recorded (within [`run`]) with their fastest and slowest under
+/// `step`, or the step [`run`] is at.
+fn record(step: Option<String>, mut times: Vec<Duration>) -> Duration {
     times.sort();
     let median = times[times.len() / 2];
     RECORD.with_borrow_mut(|record| {
-        if let Some((step, timings)) = record {
+        if let Some((at, timings)) = record {
             timings.push(Timing {
-                step: step.clone(),
+                step: step.unwrap_or_else(|| at.clone()),
                 min_ms: ms(times[0]),
                 median_ms: ms(median),
                 max_ms: ms(times[times.len() - 1]),
@@ -150,33 +158,117 @@ impl LoopTimes {
 /// Runs the Fig. 10 loops on `mesh` (`positions` indexed by its vertex ids), each `runs`
 /// times, and keeps the medians.
 pub fn fig10_loops<M: CornerOps>(mesh: &M, positions: &[[f32; 3]], runs: usize) -> LoopTimes {
-    let corners = mesh.corners().count();
-    let vertices = mesh.vertices().count();
-    let starts = contour_starts(mesh, positions);
-    let walk = || {
-        starts
-            .iter()
-            .map(|(plane, t)| ops::contour(mesh, positions, plane, *t).len())
-            .sum::<usize>()
-    };
-    let walked = walk();
-    LoopTimes {
-        items: [corners, corners, vertices, vertices, walked],
-        times: [
-            median_time(runs, || {
-                mesh.corners().fold(0u32, |a, c| a ^ mesh.vertex(c).0)
-            }),
-            median_time(runs, || {
-                mesh.corners()
-                    .fold(0u32, |a, c| a ^ mesh.opposite(c).map_or(0, |o| o.0))
-            }),
-            median_time(runs, || {
-                mesh.vertices().map(|v| ops::valence(mesh, v)).sum::<u32>()
-            }),
-            median_time(runs, || ops::vertex_normals(mesh, positions)),
-            median_time(runs, walk),
-        ],
+    let subject = [("", Fig10::new(mesh, positions))];
+    let mut timed = interleaved_loops(&subject, runs);
+    timed.swap_remove(0).0
+}
+
+/// The Fig. 10 loops of one representation, ready to be timed a run at a time
+/// ([`interleaved_loops`]).
+pub struct Fig10<'a> {
+    /// Items per loop, as in [`LoopTimes`].
+    items: [usize; 5],
+    /// Runs loop `i` once and returns its time.
+    once: Box<dyn Fn(usize) -> Duration + 'a>,
+}
+
+impl<'a> Fig10<'a> {
+    /// The loops on `mesh`, `positions` indexed by its vertex ids; the contour walks' starts
+    /// are found now.
+    pub fn new<M: CornerOps>(mesh: &'a M, positions: &'a [[f32; 3]]) -> Fig10<'a> {
+        let starts = contour_starts(mesh, positions);
+        let walk = move || {
+            starts
+                .iter()
+                .map(|(plane, t)| ops::contour(mesh, positions, plane, *t).len())
+                .sum::<usize>()
+        };
+        let corners = mesh.corners().count();
+        let vertices = mesh.vertices().count();
+        let walked = walk();
+        let once = move |i: usize| {
+            let start = Instant::now();
+            match i {
+                0 => {
+                    black_box(mesh.corners().fold(0u32, |a, c| a ^ mesh.vertex(c).0));
+                }
+                1 => {
+                    black_box(
+                        mesh.corners()
+                            .fold(0u32, |a, c| a ^ mesh.opposite(c).map_or(0, |o| o.0)),
+                    );
+                }
+                2 => {
+                    black_box(mesh.vertices().map(|v| ops::valence(mesh, v)).sum::<u32>());
+                }
+                3 => {
+                    black_box(ops::vertex_normals(mesh, positions));
+                }
+                _ => {
+                    black_box(walk());
+                }
+            }
+            start.elapsed()
+        };
+        Fig10 {
+            items: [corners, corners, vertices, vertices, walked],
+            once: Box::new(once),
+        }
     }
+}
+
+/// Times the loops of `subjects` (named for the report's timings) in `runs` rounds, each
+/// round running every loop once on every subject, one loop after the other: a machine whose
+/// speed drifts during the run (a busy neighbour, a clock that changes) slows every subject
+/// alike instead of the one being timed. Returns each subject's median times, and its ratios
+/// of time per item to the first subject's: for each loop, the median over the rounds of the
+/// ratio within a round.
+pub fn interleaved_loops(subjects: &[(&str, Fig10)], runs: usize) -> Vec<(LoopTimes, [f64; 5])> {
+    let runs = runs.max(1);
+    // times[s][i][r]: subject s, loop i, round r.
+    let mut times = vec![[(); 5].map(|_| Vec::with_capacity(runs)); subjects.len()];
+    for _ in 0..runs {
+        for i in 0..5 {
+            for ((_, subject), times) in subjects.iter().zip(&mut times) {
+                // Once untimed first: every subject is timed with its tables in cache, as
+                // when its runs follow one another, not after the other subjects' evicted them.
+                (subject.once)(i);
+                times[i].push((subject.once)(i));
+            }
+        }
+    }
+    let per_item = |s: usize, i: usize, r: usize| {
+        times[s][i][r].as_secs_f64() / subjects[s].1.items[i].max(1) as f64
+    };
+    let ratios: Vec<[f64; 5]> = (0..subjects.len())
+        .map(|s| {
+            [0, 1, 2, 3, 4].map(|i| {
+                let mut r: Vec<f64> = (0..runs)
+                    .map(|r| per_item(s, i, r) / per_item(0, i, r).max(1e-15))
+                    .collect();
+                r.sort_by(f64::total_cmp);
+                r[runs / 2]
+            })
+        })
+        .collect();
+    subjects
+        .iter()
+        .zip(times)
+        .zip(ratios)
+        .map(|(((name, subject), times), ratios)| {
+            let mut i = 0;
+            let medians = times.map(|t| {
+                let step = (!name.is_empty()).then(|| format!("{name}: {}", LOOP_NAMES[i]));
+                i += 1;
+                record(step, t)
+            });
+            let loops = LoopTimes {
+                items: subject.items,
+                times: medians,
+            };
+            (loops, ratios)
+        })
+        .collect()
 }
 
 /// Options of [`run`].
@@ -288,14 +380,13 @@ fn ms(d: Duration) -> f64 {
     d.as_secs_f64() * 1e3
 }
 
-/// A row with sizes, times and the loops' ratios to `baseline`.
+/// A row with sizes and times (its loops are filled in once every row's are timed).
 fn row(
     name: &'static str,
     bytes: u64,
     triangles: usize,
     build: Option<Duration>,
     open: Option<(Duration, Duration)>,
-    loops: Option<(&LoopTimes, &LoopTimes)>,
 ) -> BenchRow {
     BenchRow {
         name,
@@ -305,7 +396,7 @@ fn row(
         open_ms: open.map(|(open, _)| ms(open)),
         verify_ms: None,
         memcpy_ms: open.map(|(_, copy)| ms(copy)),
-        loops: loops.map(|(l, baseline)| LoopFigures::new(l.ratios(baseline))),
+        loops: None,
     }
 }
 
@@ -325,26 +416,20 @@ fn input_positions(
 }
 
 /// The row of a view of a container's bytes, for a mesh of `n` triangles: `timed` holds the
-/// bytes, the time that encoded them and the runs per step; `tables` are the view's own (the
-/// loops run on them, not through [`read::Connectivity`]'s dispatch). Times opening,
-/// verifying and a memcpy of the same bytes.
-fn view_row<T: CornerOps>(
+/// bytes, the time that encoded them and the runs per step. Times opening, verifying and a
+/// memcpy of the same bytes; returns the row and the view's positions (for its loops).
+fn view_row(
     name: &'static str,
     timed: (&[u8], Duration, usize),
     view: &read::Container,
-    tables: &T,
-    ct_loops: &LoopTimes,
     n: usize,
-) -> BenchRow {
+) -> (BenchRow, Vec<[f32; 3]>) {
     let (bytes, encode_time, runs) = timed;
     let limits = read::Limits::default();
     let open_time = median_time(runs, || {
         read::open(bytes, &limits).map(|v| v.triangle_count())
     });
-    let positions: Vec<[f32; 3]> = (0..tables.vertex_id_bound())
-        .map(|v| view.position(Vertex(v)))
-        .collect();
-    let view_loops = fig10_loops(tables, &positions, runs);
+    let positions = view.positions();
     let verify_time = median_time(runs, || {
         read::open_verified(bytes, &limits).map(|v| v.triangle_count())
     });
@@ -354,16 +439,16 @@ fn view_row<T: CornerOps>(
         n,
         Some(encode_time),
         Some((open_time, memcpy_time(runs, bytes))),
-        Some((&view_loops, ct_loops)),
     );
     r.verify_ms = Some(ms(verify_time));
-    r
+    (r, positions)
 }
 
 /// Builds every representation of `mesh` and times it, reporting each step's name to
 /// `progress` before it starts. A mesh that the encoders put in a cache-friendly order
 /// ([`write::encoding_order`]) is put in it first, so that every row, the corner table's
-/// too, works on the mesh that `encode` builds from.
+/// too, works on the mesh that `encode` builds from. The loops of every representation are
+/// timed last, together ([`interleaved_loops`]).
 ///
 /// # Errors
 /// Those of the constructions ([`CornerTable::from_mesh`], [`Lr::build`], [`write::encode`],
@@ -393,7 +478,6 @@ pub fn run(
     let table = CornerTable::from_mesh(mesh)?;
     let ct_build = median_time(runs, || CornerTable::from_mesh(mesh));
     let ct_positions = table.extend_to_copies(&mesh.positions);
-    let ct_loops = fig10_loops(&table, &ct_positions, runs);
     let ct_refs = table.v_table().len() + table.o_table().len() + table.c_table().len();
     rows.push(row(
         "corner table",
@@ -401,22 +485,14 @@ pub fn run(
         n,
         Some(ct_build),
         None,
-        Some((&ct_loops, &ct_loops)),
     ));
 
     progress("LR (owned)");
     let lr = Lr::build(&table, &options.lr)?;
     let lr_build = median_time(runs, || Lr::build(&table, &options.lr));
     let lr_positions = input_positions(mesh, &lr, |v| lr.input_vertex(v));
-    let lr_loops = fig10_loops(&lr, &lr_positions, runs);
-    rows.push(row(
-        "LR (owned)",
-        4 * lr.tables().references(),
-        n,
-        Some(lr_build),
-        None,
-        Some((&lr_loops, &ct_loops)),
-    ));
+    let lr_bytes = 4 * lr.tables().references();
+    rows.push(row("LR (owned)", lr_bytes, n, Some(lr_build), None));
 
     let limits = read::Limits::default();
     let encoded = |connectivity| {
@@ -431,12 +507,11 @@ pub fn run(
     };
 
     progress("LR (view of the .lrm bytes)");
-    let (bytes, encode_time) = encoded(write::Connectivity::Lr)?;
-    let view = read::open(&bytes, &limits)?;
-    if let Some(tables) = view.lr() {
-        let timed = (&bytes[..], encode_time, runs);
-        rows.push(view_row("LR (view)", timed, &view, tables, &ct_loops, n));
-    }
+    let (lr_file, encode_time) = encoded(write::Connectivity::Lr)?;
+    let lr_view = read::open(&lr_file, &limits)?;
+    let (lr_view_row, lr_view_positions) =
+        view_row("LR (view)", (&lr_file, encode_time, runs), &lr_view, n);
+    rows.push(lr_view_row);
 
     progress("compact LR (owned)");
     let compact_options = CompactOptions {
@@ -446,87 +521,98 @@ pub fn run(
     let compact = CompactLr::build(&table, &compact_options)?;
     let compact_build = median_time(runs, || CompactLr::build(&table, &compact_options));
     let compact_positions = input_positions(mesh, compact.tables(), |v| compact.input_vertex(v));
-    let compact_loops = fig10_loops(compact.tables(), &compact_positions, runs);
+    let compact_bytes = compact.stored_bytes();
     rows.push(row(
         "compact LR (owned)",
-        compact.stored_bytes(),
+        compact_bytes,
         n,
         Some(compact_build),
         None,
-        Some((&compact_loops, &ct_loops)),
     ));
 
     progress("compact LR (view of the .lrm bytes)");
-    let (bytes, encode_time) = encoded(write::Connectivity::LrCompact)?;
-    let view = read::open(&bytes, &limits)?;
-    if let Some(tables) = view.lr_compact() {
-        let timed = (&bytes[..], encode_time, runs);
-        rows.push(view_row(
-            "compact LR (view)",
-            timed,
-            &view,
-            tables,
-            &ct_loops,
-            n,
-        ));
-    }
+    let (compact_file, encode_time) = encoded(write::Connectivity::LrCompact)?;
+    let compact_view = read::open(&compact_file, &limits)?;
+    let timed = (&compact_file[..], encode_time, runs);
+    let (compact_view_row, compact_view_positions) =
+        view_row("compact LR (view)", timed, &compact_view, n);
+    rows.push(compact_view_row);
 
     progress("Zipper (owned)");
     let zipper = Zipper::build(&table, &options.lr)?;
     let zipper_build = median_time(runs, || Zipper::build(&table, &options.lr));
     let zipper_positions = input_positions(mesh, zipper.tables(), |v| zipper.input_vertex(v));
-    let zipper_loops = fig10_loops(zipper.tables(), &zipper_positions, runs);
+    let zipper_bytes = zipper.tables().stored_bytes();
     rows.push(row(
         "Zipper (owned)",
-        zipper.tables().stored_bytes(),
+        zipper_bytes,
         n,
         Some(zipper_build),
         None,
-        Some((&zipper_loops, &ct_loops)),
     ));
 
     progress("Zipper (view of the .lrm bytes)");
-    let (bytes, encode_time) = encoded(write::Connectivity::Zipper)?;
-    let view = read::open(&bytes, &limits)?;
-    if let Some(tables) = view.zipper() {
-        let timed = (&bytes[..], encode_time, runs);
-        rows.push(view_row(
-            "Zipper (view)",
-            timed,
-            &view,
-            tables,
-            &ct_loops,
-            n,
-        ));
-    }
+    let (zipper_file, encode_time) = encoded(write::Connectivity::Zipper)?;
+    let zipper_view = read::open(&zipper_file, &limits)?;
+    let timed = (&zipper_file[..], encode_time, runs);
+    let (zipper_view_row, zipper_view_positions) =
+        view_row("Zipper (view)", timed, &zipper_view, n);
+    rows.push(zipper_view_row);
 
     progress("Edgebreaker");
     let eb = edgebreaker::encode(&table)?;
     let eb_build = median_time(runs, || edgebreaker::encode(&table));
     let eb_limits = edgebreaker::Limits::default();
     let eb_decode = median_time(runs, || edgebreaker::decode(&eb.bytes, &eb_limits));
+    let eb_open = (eb_decode, memcpy_time(runs, &eb.bytes));
     rows.push(row(
         "Edgebreaker",
         eb.bytes.len() as u64,
         n,
         Some(eb_build),
-        Some((eb_decode, memcpy_time(runs, &eb.bytes))),
-        None,
+        Some(eb_open),
     ));
 
     progress("strips (CTS)");
     let cts = Cts::build(&table, &options.strips)?;
     let cts_build = median_time(runs, || Cts::build(&table, &options.strips));
-    let cts_loops = fig10_loops(&cts, &ct_positions, runs);
     let cts_bytes = (cts.bits_per_triangle() * cts.triangle_count() as f64 / 8.0).round() as u64;
-    rows.push(row(
-        "strips (CTS)",
-        cts_bytes,
-        n,
-        Some(cts_build),
-        None,
-        Some((&cts_loops, &ct_loops)),
+    rows.push(row("strips (CTS)", cts_bytes, n, Some(cts_build), None));
+
+    progress("Fig. 10 loops (every representation, interleaved)");
+    // The loops run on each view's own tables, not through `read::Connectivity`'s dispatch.
+    let mut subjects = vec![
+        ("corner table", Fig10::new(&table, &ct_positions)),
+        ("LR (owned)", Fig10::new(&lr, &lr_positions)),
+    ];
+    if let Some(tables) = lr_view.lr() {
+        subjects.push(("LR (view)", Fig10::new(tables, &lr_view_positions)));
+    }
+    subjects.push((
+        "compact LR (owned)",
+        Fig10::new(compact.tables(), &compact_positions),
     ));
+    if let Some(tables) = compact_view.lr_compact() {
+        subjects.push((
+            "compact LR (view)",
+            Fig10::new(tables, &compact_view_positions),
+        ));
+    }
+    subjects.push((
+        "Zipper (owned)",
+        Fig10::new(zipper.tables(), &zipper_positions),
+    ));
+    if let Some(tables) = zipper_view.zipper() {
+        subjects.push(("Zipper (view)", Fig10::new(tables, &zipper_view_positions)));
+    }
+    subjects.push(("strips (CTS)", Fig10::new(&cts, &ct_positions)));
+    let timed = interleaved_loops(&subjects, runs);
+    for ((name, _), (_, ratios)) in subjects.iter().zip(&timed) {
+        if let Some(r) = rows.iter_mut().find(|r| r.name == *name) {
+            r.loops = Some(LoopFigures::new(*ratios));
+        }
+    }
+    let ct_loops = &timed[0].0;
 
     let timings = RECORD.take().map(|(_, t)| t).unwrap_or_default();
     let judged = timings.iter().filter(|t| t.median_ms >= JUDGED_MS);

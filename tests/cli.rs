@@ -324,6 +324,16 @@ fn bench_json_has_one_row_per_representation() {
     // Edgebreaker has no random access; the LR view opens from bytes.
     let row = |name: &str| rows.iter().find(|r| r["name"] == name).unwrap();
     assert!(row("Edgebreaker")["loops"].is_null());
+    // Every other row's loops were timed (interleaved, each recorded under its row's name).
+    let timings = report["timings"].as_array().unwrap();
+    for r in rows.iter().filter(|r| r["name"] != "Edgebreaker") {
+        let name = r["name"].as_str().unwrap();
+        assert!(r["loops"]["valence"].as_f64().is_some(), "{name}");
+        for key in ["c.v", "c.o", "valence", "normals", "contour"] {
+            let step = format!("{name}: {key}");
+            assert!(timings.iter().any(|t| t["step"] == step.as_str()), "{step}");
+        }
+    }
     assert!(row("LR (view)")["open_ms"].as_f64().is_some());
     for name in ["LR (view)", "compact LR (view)", "Edgebreaker"] {
         assert!(
