@@ -111,7 +111,11 @@ fn v56_zipr_counts() {
     let at = section_at(&bytes, Tag::ZIPR);
     let field = |f: usize, x: u32| forge(&bytes, Tag::ZIPR, |p| put(p, f, x));
     breaks(&field(0, 24), 56, "ZIPR", at, "section MESH says 25");
-    breaks(&field(32, 16), 56, "ZIPR", at + 32, "unknown flag bits");
+    breaks(&field(32, 32), 56, "ZIPR", at + 32, "unknown flag bits");
+    // INNER_RING_STARTS cleared: the counts then call for two more ring-start words.
+    let flags = u32::from_le_bytes(payload(&bytes, Tag::ZIPR)[32..36].try_into().unwrap());
+    assert_ne!(flags & 16, 0);
+    breaks(&field(32, flags & !16), 56, "ZIPR", at, "counts call for");
     breaks(&field(36, 1), 56, "ZIPR", at + 32, "reserved bits");
     for m_r in [26, 0, 3] {
         breaks(&field(4, m_r), 56, "ZIPR", at + 4, "ring vertices");
@@ -142,21 +146,32 @@ fn v56_zipr_counts() {
     );
 }
 
-/// [V57] `ZIPR` rings satisfy [V16], the bit vectors only with several rings.
+/// [V57] `ZIPR` rings satisfy [V16], the bit vectors only with several rings; with
+/// `INNER_RING_STARTS` (version 1.12), over the stored inner starts and the implied first
+/// (0) and last (`m_r`).
 #[test]
 fn v57_zipr_rings() {
-    let two = vector("two_components.zipper.lrm"); // R = 2: starts [0, 4, 8], bits
-    for (i, x) in [(0, 1), (1, 3), (2, 9)] {
-        let bad = zipr_set(&two, 0, i, x);
-        breaks(&bad, 57, "ZIPR", zipr_at(&two, 0, i), "ring start");
+    // R = 2, m_r = 8: the inner start [4] (the starts [0, 4, 8]), and the bit vectors.
+    let two = vector("two_components.zipper.lrm");
+    assert_eq!(zipr_get(&two, 0, 0), 4);
+    let bad = zipr_set(&two, 0, 0, 3);
+    breaks(&bad, 57, "ZIPR", zipr_at(&two, 0, 0), "ring start 3");
+    for x in [5, 9, u32::MAX] {
+        let bad = zipr_set(&two, 0, 0, x);
+        let words = format!("ring start {x} leaves fewer than 4 vertices to the last ring");
+        breaks(&bad, 57, "ZIPR", zipr_at(&two, 0, 0), &words);
     }
     let bad = zipr_set(&two, 1, 0, 0x8);
     breaks(&bad, 57, "ZIPR", zipr_at(&two, 1, 0), "ring-end bits");
     let bad = zipr_set(&two, 2, 0, 2);
     breaks(&bad, 57, "ZIPR", zipr_at(&two, 2, 0), "ring ranks");
-    let one = vector("closed_tetrahedron.zipper.lrm");
-    let bad = zipr_set(&one, 0, 1, 5);
-    breaks(&bad, 57, "ZIPR", zipr_at(&one, 0, 1), "ring start 5");
+    // Every start stored (version 1.10): R = 1, m_r = 25, the starts [0, 25].
+    let old = vector("torus_with_t0.zipper-1.10.lrm");
+    for (i, x) in [(0, 1), (1, 5)] {
+        let bad = zipr_set(&old, 0, i, x);
+        let words = format!("ring start {x}");
+        breaks(&bad, 57, "ZIPR", zipr_at(&old, 0, i), &words);
+    }
 }
 
 /// [V58] Heads, symbols, exception and record words, tips.

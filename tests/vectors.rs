@@ -134,7 +134,7 @@ fn listing(name: &str, bytes: &[u8]) -> String {
             name,
             z,
             format!(
-                "{n} triangles, {} ring vertices, {} T0 rows, {} exceptions, {} records, {} pairs, {} explicit T0 opposites, boundaries on the ring: {}, wart deltas: {}, short heads: {}, packed lists: {}",
+                "{n} triangles, {} ring vertices, {} T0 rows, {} exceptions, {} records, {} pairs, {} explicit T0 opposites, boundaries on the ring: {}, wart deltas: {}, short heads: {}, packed lists: {}, inner ring starts: {}",
                 z.ring_vertices(),
                 z.t0_count(),
                 z.exception_count(),
@@ -144,7 +144,8 @@ fn listing(name: &str, bytes: &[u8]) -> String {
                 z.boundaries_on_ring(),
                 z.wart_deltas(),
                 z.short_heads(),
-                z.packed_lists()
+                z.packed_lists(),
+                z.inner_ring_starts()
             ),
         ),
         View::Strips(strips) => corner_listing(
@@ -461,33 +462,36 @@ fn vectors_match() {
 }
 
 /// Zipper files of versions 1.7 (no `WART_DELTAS`: every wart an exception word), 1.8
-/// (four-word heads, before `SHORT_HEADS`) and 1.9 (32-bit lists, before `PACKED_LISTS`),
-/// kept from before each flag: they still open, verify, and give every corner's vertex and
-/// opposite as the current vector of the same mesh does (the listing after its header lines).
+/// (four-word heads, before `SHORT_HEADS`), 1.9 (32-bit lists, before `PACKED_LISTS`) and
+/// 1.10 (every ring start stored, before `INNER_RING_STARTS`), kept from before each flag:
+/// they still open, verify, and give every corner's vertex and opposite as the current vector
+/// of the same mesh does (the listing after its header lines).
 #[test]
-fn zipper_files_of_versions_1_7_to_1_9_read_the_same() {
+fn zipper_files_of_versions_1_7_to_1_10_read_the_same() {
     let versions = [
         (
             7,
-            "wart deltas: false, short heads: false, packed lists: false",
+            "wart deltas: false, short heads: false, packed lists: false, inner ring starts: false",
         ),
         (
             8,
-            "wart deltas: true, short heads: false, packed lists: false",
+            "wart deltas: true, short heads: false, packed lists: false, inner ring starts: false",
         ),
         (
             9,
-            "wart deltas: true, short heads: true, packed lists: false",
+            "wart deltas: true, short heads: true, packed lists: false, inner ring starts: false",
+        ),
+        (
+            10,
+            "wart deltas: true, short heads: true, packed lists: true, inner ring starts: false",
         ),
     ];
     for name in ["torus_with_t0", "genus3_torus"] {
         let current = std::fs::read(dir().join(format!("{name}.zipper.lrm"))).unwrap();
         let new_listing = listing(name, &current);
-        assert!(new_listing
-            .lines()
-            .nth(1)
-            .unwrap()
-            .ends_with("wart deltas: true, short heads: true, packed lists: true"));
+        assert!(new_listing.lines().nth(1).unwrap().ends_with(
+            "wart deltas: true, short heads: true, packed lists: true, inner ring starts: true"
+        ));
         for (minor, flags) in versions {
             let file = format!("{name}.zipper-1.{minor}.lrm");
             let old = std::fs::read(dir().join(&file)).unwrap();

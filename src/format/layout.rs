@@ -402,7 +402,8 @@ impl LrbeHeader {
 }
 
 /// `ZIPR` (§3.5e): ten u32, then thirteen u32 arrays (`SUPER` empty before version 1.9; the
-/// seven lists bit fields in words with `PACKED_LISTS`, version 1.10).
+/// seven lists bit fields in words with `PACKED_LISTS`, version 1.10; `ring_starts` the inner
+/// starts with `INNER_RING_STARTS`, version 1.12).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct ZiprHeader {
     /// `m`: vertices.
@@ -422,7 +423,7 @@ pub struct ZiprHeader {
     /// `E`: explicit T0 opposites.
     pub explicit: u32,
     /// Flags: [`LR_BOUNDARIES_ON_RING`], [`ZIPPER_WART_DELTAS`], [`ZIPPER_SHORT_HEADS`],
-    /// [`ZIPPER_PACKED_LISTS`].
+    /// [`ZIPPER_PACKED_LISTS`], [`ZIPPER_INNER_RING_STARTS`].
     pub flags: u32,
     /// Reserved, 0.
     pub reserved: u32,
@@ -442,6 +443,12 @@ pub const ZIPPER_SHORT_HEADS: u32 = 4;
 /// `ZIPR` flag (FORMAT.md §3.5e, version 1.10): the seven lists (`EXCEPTIONS` to `C`) are bit
 /// fields as wide as the counts call for (a vertex of a mesh of 5,000 in 13 bits, not 32).
 pub const ZIPPER_PACKED_LISTS: u32 = 8;
+
+/// `ZIPR` flag (FORMAT.md §3.5e, version 1.12): `ring_starts` holds the starts of rings 1 to
+/// `R − 1` only (`R − 1` words): ring 0 starts at 0 and the last ring ends at `m_r`, which the
+/// header says already. Eight bytes less in every file, the most a tiny mesh's Zipper has above
+/// the bit-efficient LR's.
+pub const ZIPPER_INNER_RING_STARTS: u32 = 16;
 
 impl ZiprHeader {
     /// Bytes of the header.
@@ -507,6 +514,11 @@ impl ZiprHeader {
         self.rings > 1
     }
 
+    /// Whether `ring_starts` holds the inner starts only ([`ZIPPER_INNER_RING_STARTS`]).
+    pub fn inner_ring_starts(&self) -> bool {
+        self.flags & ZIPPER_INNER_RING_STARTS != 0
+    }
+
     /// Elements of the seven lists (`EXCEPTIONS` to `C`, FORMAT.md §3.5e); `None` when
     /// `m_r > m`.
     pub fn list_lengths(&self) -> Option<[u64; 7]> {
@@ -551,7 +563,10 @@ impl ZiprHeader {
         let fields = self.list_fields();
         let list_words: [u64; 7] = std::array::from_fn(|i| packed_words(lists[i], fields[i]));
         let counts = [
-            self.rings as u64 + 1,
+            match self.inner_ring_starts() {
+                true => (self.rings as u64).saturating_sub(1),
+                false => self.rings as u64 + 1,
+            },
             bits,
             bits,
             plane_array_words(self.m_r) as u64,

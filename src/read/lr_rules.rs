@@ -13,8 +13,8 @@ use crate::words::Words;
 /// [V16] ring starts increase by at least 4 from 0 to `m_r`, and the ring-end bits and ranks
 /// (when the layout stores them) are the ones the starts imply. `err(array, word, message)`
 /// locates an error in array 0 (starts), 1 (bits) or 2 (ranks).
-pub(super) fn check_rings<W: Words>(
-    ring_starts: &W,
+pub(super) fn check_rings<S: Words, W: Words>(
+    ring_starts: &S,
     bits: Option<(&W, &W)>,
     m_r: u32,
     err: impl Fn(usize, usize, String) -> Error,

@@ -9,7 +9,8 @@ use super::Sections;
 use crate::corner_table::NONE;
 use crate::error::{Result, Rule};
 use crate::format::layout::{
-    ZiprHeader, LR_BOUNDARIES_ON_RING, ZIPPER_PACKED_LISTS, ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
+    ZiprHeader, LR_BOUNDARIES_ON_RING, ZIPPER_INNER_RING_STARTS, ZIPPER_PACKED_LISTS,
+    ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
 };
 use crate::format::Tag;
 use crate::ids::Corner;
@@ -47,8 +48,11 @@ pub(super) fn zipper_tables<'a>(
     let h = ZiprHeader::read(b);
     let (m_r, rings, n0) = (h.m_r, h.rings, h.t0);
     f.expect_vertices(0, h.m, m, Rule(56))?;
-    let known =
-        LR_BOUNDARIES_ON_RING | ZIPPER_WART_DELTAS | ZIPPER_SHORT_HEADS | ZIPPER_PACKED_LISTS;
+    let known = LR_BOUNDARIES_ON_RING
+        | ZIPPER_WART_DELTAS
+        | ZIPPER_SHORT_HEADS
+        | ZIPPER_PACKED_LISTS
+        | ZIPPER_INNER_RING_STARTS;
     if h.flags & !known != 0 || h.reserved != 0 {
         return Err(f.err(32, Rule(56), "unknown flag bits or reserved bits are set"));
     }
@@ -120,16 +124,45 @@ pub(super) fn zipper_tables<'a>(
     }
     let [exceptions, records, pairs, t0_v, t0_codes, t0_explicit, c] = lists;
 
-    // [V57] rings, as for the standard LR; the bit vectors only with several rings.
-    check_rings(
-        &ring_starts,
-        h.has_ring_bits().then_some((&ring_last, &ring_rank)),
-        m_r,
-        |array, i, message| word_err(array, i, Rule(57), message),
-    )?;
+    // [V57] rings, as for the standard LR; the bit vectors only with several rings. The
+    // tables keep the inner starts (rings 1 to R − 1) whether or not the file stores the
+    // first and last.
+    let bits = h.has_ring_bits().then_some((&ring_last, &ring_rank));
+    let ring_starts = if h.inner_ring_starts() {
+        let all = AllRingStarts {
+            inner: ring_starts,
+            rings,
+            m_r,
+        };
+        // The implied end at fault: the last stored start leaves the last ring too short.
+        // (The implied first start, 0, cannot be; with one ring [V56] keeps 4 ≤ m_r.)
+        check_rings(&all, bits, m_r, |array, i, message| match (array, i) {
+            (0, i) if i >= rings as usize && i >= 2 => word_err(
+                0,
+                i - 2,
+                Rule(57),
+                format!(
+                    "ring start {} leaves fewer than 4 vertices to the last ring (m_r = {m_r})",
+                    all.at(i - 1)
+                ),
+            ),
+            (0, i) if i == 0 || i >= rings as usize => f.err(4, Rule(57), message),
+            (0, i) => word_err(0, i - 1, Rule(57), message),
+            (array, i) => word_err(array, i, Rule(57), message),
+        })?;
+        ring_starts
+    } else {
+        check_rings(&ring_starts, bits, m_r, |array, i, message| {
+            word_err(array, i, Rule(57), message)
+        })?;
+        // Words 1 to R − 1 of the R + 1 (none with fewer than two rings).
+        let inner = 4 * (rings as usize).saturating_sub(1);
+        LeWords(&ring_starts.0[4..4 + inner])
+    };
 
     let mut tables = ZipperTables {
         ring_starts,
+        rings,
         ring_last,
         ring_rank,
         planes,
@@ -148,6 +181,7 @@ pub(super) fn zipper_tables<'a>(
         wart_deltas: h.flags & ZIPPER_WART_DELTAS != 0,
         short_heads: h.flags & ZIPPER_SHORT_HEADS != 0,
         packed_lists: h.flags & ZIPPER_PACKED_LISTS != 0,
+        inner_ring_starts: h.inner_ring_starts(),
     };
     debug_assert_eq!(tables.planes.count(), plane_array_words(m_r));
 
@@ -445,4 +479,25 @@ fn check_slots(
         }
     }
     Ok(flags)
+}
+
+/// Every ring start, `0` and `m_r` included, over the inner starts a file with
+/// `INNER_RING_STARTS` stores (FORMAT.md §3.5e), for the ring rules.
+struct AllRingStarts<'a> {
+    inner: LeWords<'a>,
+    rings: u32,
+    m_r: u32,
+}
+
+impl Words for AllRingStarts<'_> {
+    fn at(&self, i: usize) -> u32 {
+        match i {
+            0 => 0,
+            i if i >= self.rings as usize => self.m_r,
+            i => self.inner.at(i - 1),
+        }
+    }
+    fn count(&self) -> usize {
+        self.rings as usize + 1
+    }
 }

@@ -6,7 +6,8 @@ use crate::edgebreaker;
 use crate::error::Result;
 use crate::format::layout::{
     write_fields, Layout, LrbeHeader, LrtbHeader, StrpHeader, ZiprHeader, LRBE_TIP_BASES,
-    LR_BOUNDARIES_ON_RING, ZIPPER_PACKED_LISTS, ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
+    LR_BOUNDARIES_ON_RING, ZIPPER_INNER_RING_STARTS, ZIPPER_PACKED_LISTS, ZIPPER_SHORT_HEADS,
+    ZIPPER_WART_DELTAS,
 };
 use crate::format::{Kind, Tag};
 use crate::ids::{Triangle, Vertex};
@@ -262,6 +263,11 @@ pub(crate) fn zipper_header(z: &Zipper) -> ZiprHeader {
             | if t.short_heads { ZIPPER_SHORT_HEADS } else { 0 }
             | if t.packed_lists {
                 ZIPPER_PACKED_LISTS
+            } else {
+                0
+            }
+            | if t.inner_ring_starts {
+                ZIPPER_INNER_RING_STARTS
             } else {
                 0
             },

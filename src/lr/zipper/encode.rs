@@ -233,8 +233,10 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
     }
     let mut packed = packed.into_iter();
     let mut list = || packed.next().expect("seven lists");
+    let inner = 1..t.ring_starts.len().saturating_sub(1).max(1);
     let z = ZipperTables {
-        ring_starts: t.ring_starts.clone(),
+        ring_starts: t.ring_starts[inner].to_vec(),
+        rings: t.ring_count() as u32,
         ring_last: ring_bits(&t.ring_last),
         ring_rank: ring_bits(&t.ring_rank),
         planes,
@@ -253,6 +255,7 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
         wart_deltas,
         short_heads: true,
         packed_lists: true,
+        inner_ring_starts: true,
     };
     same_as_standard(&z, t)?;
     Ok(z)

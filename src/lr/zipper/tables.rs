@@ -19,7 +19,11 @@ pub(crate) const LEFT_SLOTS: u128 = 0x5555_5555_5555_5555_5555_5555_5555_5555;
 /// container).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ZipperTables<W> {
+    /// The first vertex of rings 1 to `rings − 1` (ring 0 starts at 0, the last ends at
+    /// `m_r`).
     pub(crate) ring_starts: W,
+    /// `R`: rings.
+    pub(crate) rings: u32,
     /// Empty with one ring (never read then).
     pub(crate) ring_last: W,
     pub(crate) ring_rank: W,
@@ -57,6 +61,8 @@ pub struct ZipperTables<W> {
     pub(crate) short_heads: bool,
     /// The header's `PACKED_LISTS` flag: the lists above as bit fields (read as words).
     pub(crate) packed_lists: bool,
+    /// The header's `INNER_RING_STARTS` flag.
+    pub(crate) inner_ring_starts: bool,
 }
 
 /// The symbol planes of one block and where a slot lies in them.
@@ -293,6 +299,12 @@ impl<W: Words> ZipperTables<W> {
         self.packed_lists
     }
 
+    /// Whether the header's `INNER_RING_STARTS` flag is set (version 1.12): the file stores
+    /// the starts of rings 1 to `R − 1` only (the tables hold those either way).
+    pub fn inner_ring_starts(&self) -> bool {
+        self.inner_ring_starts
+    }
+
     /// Whether the header's `WART_DELTAS` flag is set (version 1.8).
     pub fn wart_deltas(&self) -> bool {
         self.wart_deltas
@@ -357,11 +369,15 @@ impl<W: Words> LrLayout for ZipperTables<W> {
     }
     #[inline]
     fn ring_count(&self) -> usize {
-        self.ring_starts.count().saturating_sub(1)
+        self.rings as usize
     }
     #[inline]
     fn ring_start(&self, ring: usize) -> u32 {
-        self.ring_starts.at(ring)
+        match ring {
+            0 => 0,
+            r if r >= self.rings as usize => self.m_r,
+            r => self.ring_starts.at(r - 1),
+        }
     }
     #[inline]
     fn ring_last_word(&self, i: usize) -> u32 {

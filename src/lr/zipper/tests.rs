@@ -35,6 +35,7 @@ fn counting<'a>(
     let w = |words: &'a Vec<u32>| Counting { words, reads };
     ZipperTables {
         ring_starts: w(&z.ring_starts),
+        rings: z.rings,
         ring_last: w(&z.ring_last),
         ring_rank: w(&z.ring_rank),
         planes: w(&z.planes),
@@ -53,6 +54,7 @@ fn counting<'a>(
         wart_deltas: z.wart_deltas,
         short_heads: z.short_heads,
         packed_lists: z.packed_lists,
+        inner_ring_starts: z.inner_ring_starts,
     }
 }
 
