@@ -111,11 +111,19 @@ fn v56_zipr_counts() {
     let at = section_at(&bytes, Tag::ZIPR);
     let field = |f: usize, x: u32| forge(&bytes, Tag::ZIPR, |p| put(p, f, x));
     breaks(&field(0, 24), 56, "ZIPR", at, "section MESH says 25");
-    breaks(&field(32, 32), 56, "ZIPR", at + 32, "unknown flag bits");
+    breaks(&field(32, 64), 56, "ZIPR", at + 32, "unknown flag bits");
     // INNER_RING_STARTS cleared: the counts then call for two more ring-start words.
     let flags = u32::from_le_bytes(payload(&bytes, Tag::ZIPR)[32..36].try_into().unwrap());
     assert_ne!(flags & 16, 0);
     breaks(&field(32, flags & !16), 56, "ZIPR", at, "counts call for");
+    // RING_BLOCKS cleared with four rings: the counts then call for the ring-end bits and
+    // ranks (two words of 200 vertices each) instead of one word of four 2-bit fields.
+    let four = vector("four_spheres.zipper.lrm");
+    let at4 = section_at(&four, Tag::ZIPR);
+    let flags = u32::from_le_bytes(payload(&four, Tag::ZIPR)[32..36].try_into().unwrap());
+    assert_ne!(flags & 32, 0);
+    let bad = forge(&four, Tag::ZIPR, |p| put(p, 32, flags & !32));
+    breaks(&bad, 56, "ZIPR", at4, "counts call for");
     breaks(&field(36, 1), 56, "ZIPR", at + 32, "reserved bits");
     for m_r in [26, 0, 3] {
         breaks(&field(4, m_r), 56, "ZIPR", at + 4, "ring vertices");
@@ -161,10 +169,34 @@ fn v57_zipr_rings() {
         let words = format!("ring start {x} leaves fewer than 4 vertices to the last ring");
         breaks(&bad, 57, "ZIPR", zipr_at(&two, 0, 0), &words);
     }
-    let bad = zipr_set(&two, 1, 0, 0x8);
-    breaks(&bad, 57, "ZIPR", zipr_at(&two, 1, 0), "ring-end bits");
-    let bad = zipr_set(&two, 2, 0, 2);
-    breaks(&bad, 57, "ZIPR", zipr_at(&two, 2, 0), "ring ranks");
+    // RING_BLOCKS: R = 4, m_r = 200, the starts [0, 50, 100, 150, 200]; four blocks, the
+    // rings 0, 1, 2, 3 of their first vertices in 2-bit fields (one word, 0xE4).
+    let four = vector("four_spheres.zipper.lrm");
+    assert_eq!(zipr_get(&four, 1, 0), 0xE4);
+    for (k, ring) in [(0, 1), (1, 0), (1, 2), (3, 2), (2, 3)] {
+        let word = 0xE4 & !(3 << (2 * k)) | ring << (2 * k);
+        let bad = zipr_set(&four, 1, 0, word);
+        let words = format!("RING_BLOCKS field {k} says ring {ring}");
+        breaks(&bad, 57, "ZIPR", zipr_at(&four, 1, 0), &words);
+    }
+    let bad = zipr_set(&four, 1, 0, 0xE4 | 1 << 8);
+    breaks(
+        &bad,
+        57,
+        "ZIPR",
+        zipr_at(&four, 1, 0),
+        "RING_BLOCKS: bits past",
+    );
+    // Ring-end bits and ranks (version 1.10, two rings): the starts [0, 4, 8].
+    let old_two = vector("two_components.zipper-1.10.lrm");
+    for (i, x) in [(0, 1), (1, 3), (2, 9)] {
+        let bad = zipr_set(&old_two, 0, i, x);
+        breaks(&bad, 57, "ZIPR", zipr_at(&old_two, 0, i), "ring start");
+    }
+    let bad = zipr_set(&old_two, 1, 0, 0x8);
+    breaks(&bad, 57, "ZIPR", zipr_at(&old_two, 1, 0), "ring-end bits");
+    let bad = zipr_set(&old_two, 2, 0, 2);
+    breaks(&bad, 57, "ZIPR", zipr_at(&old_two, 2, 0), "ring ranks");
     // Every start stored (version 1.10): R = 1, m_r = 25, the starts [0, 25].
     let old = vector("torus_with_t0.zipper-1.10.lrm");
     for (i, x) in [(0, 1), (1, 5)] {

@@ -19,7 +19,7 @@ use lrmesh::write::{encode, Connectivity, EncodeOptions, Orient};
 use lrmesh::CornerOps;
 
 /// Sources, read as OFF unless named in [`OBJ_VECTORS`].
-const VECTORS: [&str; 10] = [
+const VECTORS: [&str; 11] = [
     "closed_tetrahedron",
     "boundary_hedra_open",
     "two_components",
@@ -42,6 +42,9 @@ const VECTORS: [&str; 10] = [
     // CGAL's genus-3 torus (corpus/meshes/3torus.off): Zipper records that store both
     // opposites (the pair list).
     "genus3_torus",
+    // Four spheres apart (`lrmesh generate --triangles 400 --components 4 --genus 0
+    // --irregular`): four rings over four blocks, each block's ring in RING_BLOCKS (ZIPR).
+    "four_spheres",
 ];
 
 /// The sources written as OBJ (per-corner attributes, parts).
@@ -134,7 +137,7 @@ fn listing(name: &str, bytes: &[u8]) -> String {
             name,
             z,
             format!(
-                "{n} triangles, {} ring vertices, {} T0 rows, {} exceptions, {} records, {} pairs, {} explicit T0 opposites, boundaries on the ring: {}, wart deltas: {}, short heads: {}, packed lists: {}, inner ring starts: {}",
+                "{n} triangles, {} ring vertices, {} T0 rows, {} exceptions, {} records, {} pairs, {} explicit T0 opposites, boundaries on the ring: {}, wart deltas: {}, short heads: {}, packed lists: {}, inner ring starts: {}, ring blocks: {}",
                 z.ring_vertices(),
                 z.t0_count(),
                 z.exception_count(),
@@ -145,7 +148,8 @@ fn listing(name: &str, bytes: &[u8]) -> String {
                 z.wart_deltas(),
                 z.short_heads(),
                 z.packed_lists(),
-                z.inner_ring_starts()
+                z.inner_ring_starts(),
+                z.ring_blocks()
             ),
         ),
         View::Strips(strips) => corner_listing(
@@ -463,7 +467,9 @@ fn vectors_match() {
 
 /// Zipper files of versions 1.7 (no `WART_DELTAS`: every wart an exception word), 1.8
 /// (four-word heads, before `SHORT_HEADS`), 1.9 (32-bit lists, before `PACKED_LISTS`) and
-/// 1.10 (every ring start stored, before `INNER_RING_STARTS`), kept from before each flag:
+/// 1.10 (every ring start stored, ring-end bits, before `INNER_RING_STARTS` and
+/// `RING_BLOCKS`), kept from before each flag, for `torus_with_t0` and `genus3_torus`, and
+/// `two_components` of version 1.10 (two rings: ring-end bits and ranks):
 /// they still open, verify, and give every corner's vertex and opposite as the current vector
 /// of the same mesh does (the listing after its header lines).
 #[test]
@@ -471,28 +477,33 @@ fn zipper_files_of_versions_1_7_to_1_10_read_the_same() {
     let versions = [
         (
             7,
-            "wart deltas: false, short heads: false, packed lists: false, inner ring starts: false",
+            "wart deltas: false, short heads: false, packed lists: false, inner ring starts: false, ring blocks: false",
         ),
         (
             8,
-            "wart deltas: true, short heads: false, packed lists: false, inner ring starts: false",
+            "wart deltas: true, short heads: false, packed lists: false, inner ring starts: false, ring blocks: false",
         ),
         (
             9,
-            "wart deltas: true, short heads: true, packed lists: false, inner ring starts: false",
+            "wart deltas: true, short heads: true, packed lists: false, inner ring starts: false, ring blocks: false",
         ),
         (
             10,
-            "wart deltas: true, short heads: true, packed lists: true, inner ring starts: false",
+            "wart deltas: true, short heads: true, packed lists: true, inner ring starts: false, ring blocks: false",
         ),
     ];
-    for name in ["torus_with_t0", "genus3_torus"] {
+    for name in ["torus_with_t0", "genus3_torus", "two_components"] {
+        let versions = match name {
+            "two_components" => &versions[3..],
+            _ => &versions[..],
+        };
         let current = std::fs::read(dir().join(format!("{name}.zipper.lrm"))).unwrap();
         let new_listing = listing(name, &current);
         assert!(new_listing.lines().nth(1).unwrap().ends_with(
-            "wart deltas: true, short heads: true, packed lists: true, inner ring starts: true"
+            "wart deltas: true, short heads: true, packed lists: true, inner ring starts: true, \
+             ring blocks: true"
         ));
-        for (minor, flags) in versions {
+        for &(minor, flags) in versions {
             let file = format!("{name}.zipper-1.{minor}.lrm");
             let old = std::fs::read(dir().join(&file)).unwrap();
             assert_eq!(u16::from_le_bytes([old[10], old[11]]), minor, "{file}");

@@ -403,7 +403,8 @@ impl LrbeHeader {
 
 /// `ZIPR` (§3.5e): ten u32, then thirteen u32 arrays (`SUPER` empty before version 1.9; the
 /// seven lists bit fields in words with `PACKED_LISTS`, version 1.10; `ring_starts` the inner
-/// starts with `INNER_RING_STARTS`, version 1.12).
+/// starts with `INNER_RING_STARTS` and `ring_last` the fields of `RING_BLOCKS` with
+/// `RING_BLOCKS`, version 1.12).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct ZiprHeader {
     /// `m`: vertices.
@@ -423,7 +424,7 @@ pub struct ZiprHeader {
     /// `E`: explicit T0 opposites.
     pub explicit: u32,
     /// Flags: [`LR_BOUNDARIES_ON_RING`], [`ZIPPER_WART_DELTAS`], [`ZIPPER_SHORT_HEADS`],
-    /// [`ZIPPER_PACKED_LISTS`], [`ZIPPER_INNER_RING_STARTS`].
+    /// [`ZIPPER_PACKED_LISTS`], [`ZIPPER_INNER_RING_STARTS`], [`ZIPPER_RING_BLOCKS`].
     pub flags: u32,
     /// Reserved, 0.
     pub reserved: u32,
@@ -449,6 +450,13 @@ pub const ZIPPER_PACKED_LISTS: u32 = 8;
 /// header says already. Eight bytes less in every file, the most a tiny mesh's Zipper has above
 /// the bit-efficient LR's.
 pub const ZIPPER_INNER_RING_STARTS: u32 = 16;
+
+/// `ZIPR` flag (FORMAT.md §3.5e, version 1.12): with several rings, `ring_last` and
+/// `ring_rank` (two bits per ring vertex) give way to `RING_BLOCKS`, the ring of each block's
+/// first vertex in `bits(R − 1)` bits; a vertex's ring is then that plus the ring starts
+/// between (at most 16: a ring has 4 vertices or more). A bit per triangle less on a mesh of
+/// several components.
+pub const ZIPPER_RING_BLOCKS: u32 = 32;
 
 impl ZiprHeader {
     /// Bytes of the header.
@@ -511,7 +519,21 @@ impl ZiprHeader {
 
     /// Whether the ring-end bits and ranks are stored (only with several rings).
     pub fn has_ring_bits(&self) -> bool {
-        self.rings > 1
+        self.rings > 1 && !self.ring_blocks()
+    }
+
+    /// Whether `RING_BLOCKS` stands for the ring-end bits ([`ZIPPER_RING_BLOCKS`], with
+    /// several rings).
+    pub fn ring_blocks(&self) -> bool {
+        self.rings > 1 && self.flags & ZIPPER_RING_BLOCKS != 0
+    }
+
+    /// Fields of `RING_BLOCKS`: one per block of 64 ring vertices (none without the flag).
+    pub fn ring_block_count(&self) -> u64 {
+        match self.ring_blocks() {
+            true => (self.m_r as u64).div_ceil(1 << crate::lr::zipper::BLOCK_SHIFT),
+            false => 0,
+        }
     }
 
     /// Whether `ring_starts` holds the inner starts only ([`ZIPPER_INNER_RING_STARTS`]).
@@ -562,12 +584,16 @@ impl ZiprHeader {
         let lists = self.list_lengths()?;
         let fields = self.list_fields();
         let list_words: [u64; 7] = std::array::from_fn(|i| packed_words(lists[i], fields[i]));
+        let ring_blocks = crate::lr::zipper::ring_block_field(self.rings);
         let counts = [
             match self.inner_ring_starts() {
                 true => (self.rings as u64).saturating_sub(1),
                 false => self.rings as u64 + 1,
             },
-            bits,
+            match self.ring_blocks() {
+                true => packed_words(self.ring_block_count(), [ring_blocks; 2]),
+                false => bits,
+            },
             bits,
             plane_array_words(self.m_r) as u64,
             if short { SHORT_HEAD_WORDS } else { HEAD_WORDS } as u64 * blocks,

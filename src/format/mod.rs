@@ -27,7 +27,7 @@ pub const MAJOR: u16 = 1;
 pub const MINOR: u16 = 12;
 
 /// The minor version a file of these sections (tags and payloads) is written with: 12 with
-/// `ZIPR` flag `INNER_RING_STARTS`; 11 with `LRBE` flag `TIP_BASES`; 10 with
+/// `ZIPR` flag `INNER_RING_STARTS` or `RING_BLOCKS`; 11 with `LRBE` flag `TIP_BASES`; 10 with
 /// `ZIPR` flag `PACKED_LISTS`; 9 with `SHORT_HEADS`; 8 with `ZIPR` flag `WART_DELTAS`; 7 with `ZIPR`; 6 with `GEOM` encoding 6; 5 with `FLIP`; 4 with an LR flags word set; 3 with
 /// `PART` labels coded, normals predicted from their neighbours only or `COPC`; 2 with a
 /// position encoding of version 1.2 (`GEOM` encodings 2 to 5), an `ATTR` record of value
@@ -54,7 +54,9 @@ pub fn minor_for<'a>(sections: impl IntoIterator<Item = (Tag, &'a [u8])>) -> u16
             Tag::LRBE if bytes.len() >= 32 && le_u32(bytes, 28) != 0 => 4,
             Tag::ZIPR
                 if bytes.len() >= 36
-                    && le_u32(bytes, 32) & layout::ZIPPER_INNER_RING_STARTS != 0 =>
+                    && le_u32(bytes, 32)
+                        & (layout::ZIPPER_INNER_RING_STARTS | layout::ZIPPER_RING_BLOCKS)
+                        != 0 =>
             {
                 12
             }

@@ -37,9 +37,12 @@ pub(crate) fn with_slots<T: LrLayout>(
     lr: Vec<u32>,
     vo_star: Vec<u32>,
 ) -> LrTables<Vec<u32>> {
-    let ring_words = match t.ring_count() {
-        0 | 1 => 0,
-        _ => t.ring_vertices().div_ceil(32) as usize,
+    let ring_starts: Vec<u32> = (0..t.ring_count() + 1).map(|r| t.ring_start(r)).collect();
+    // The ring-end bits and ranks from the starts (a layout may not store them), only read
+    // with several rings.
+    let (ring_last, ring_rank) = match t.ring_count() {
+        0 | 1 => (Vec::new(), Vec::new()),
+        _ => crate::lr::ring_bits(&ring_starts),
     };
     LrTables {
         lr,
@@ -49,9 +52,9 @@ pub(crate) fn with_slots<T: LrLayout>(
         c: (0..t.vertex_count() - t.ring_vertices())
             .map(|i| t.isolated_corner(i))
             .collect(),
-        ring_starts: (0..t.ring_count() + 1).map(|r| t.ring_start(r)).collect(),
-        ring_last: (0..ring_words).map(|i| t.ring_last_word(i)).collect(),
-        ring_rank: (0..ring_words).map(|i| t.ring_rank_word(i)).collect(),
+        ring_starts,
+        ring_last,
+        ring_rank,
         m_r: t.ring_vertices(),
         m: t.vertex_count(),
         boundaries_on_ring: t.boundaries_on_ring(),

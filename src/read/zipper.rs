@@ -10,14 +10,15 @@ use crate::corner_table::NONE;
 use crate::error::{Result, Rule};
 use crate::format::layout::{
     ZiprHeader, LR_BOUNDARIES_ON_RING, ZIPPER_INNER_RING_STARTS, ZIPPER_PACKED_LISTS,
-    ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
+    ZIPPER_RING_BLOCKS, ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
 };
 use crate::format::Tag;
 use crate::ids::Corner;
 use crate::lr::zipper::{
-    first_bit, plane_array_words, Packed, BLOCK_SHIFT, DELTAS, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT,
-    HEAD_WORDS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PLANE_WORDS, PREVIOUS, RECORD_WORDS,
-    SHORT_HEAD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
+    first_bit, plane_array_words, ring_block_field, Field, Packed, BLOCK_SHIFT, DELTAS, EXCEPTION,
+    EXPLICIT, EXPLICIT_SHIFT, HEAD_WORDS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PLANE_WORDS, PREVIOUS,
+    RECORD_WORDS, SHORT_HEAD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE,
+    STORES_SECOND,
 };
 use crate::lr::{LrLayout, ZipperTables, NULL, VALUE, WART};
 use crate::words::{LeWords, Words};
@@ -52,7 +53,8 @@ pub(super) fn zipper_tables<'a>(
         | ZIPPER_WART_DELTAS
         | ZIPPER_SHORT_HEADS
         | ZIPPER_PACKED_LISTS
-        | ZIPPER_INNER_RING_STARTS;
+        | ZIPPER_INNER_RING_STARTS
+        | ZIPPER_RING_BLOCKS;
     if h.flags & !known != 0 || h.reserved != 0 {
         return Err(f.err(32, Rule(56), "unknown flag bits or reserved bits are set"));
     }
@@ -160,11 +162,27 @@ pub(super) fn zipper_tables<'a>(
         LeWords(&ring_starts.0[4..4 + inner])
     };
 
+    // With RING_BLOCKS, array 1 holds the ring of each block's first vertex.
+    let (ring_last, ring_blocks) = match h.ring_blocks() {
+        true => {
+            let field = ring_block_field(rings);
+            let count = h.ring_block_count() as usize;
+            let blocks = Packed::new(ring_last, count, [field; 2]);
+            check_ring_blocks(&blocks, &ring_starts, rings, m_r, |k, message| {
+                let bit = first_bit([field; 2], k as u64);
+                f.err(starts[1] + (bit / 8) as usize, Rule(57), message)
+            })?;
+            (LeWords(&[]), blocks)
+        }
+        false => (ring_last, Packed::new(LeWords(&[]), 0, [Field::WORD; 2])),
+    };
+
     let mut tables = ZipperTables {
         ring_starts,
         rings,
         ring_last,
         ring_rank,
+        ring_blocks,
         planes,
         heads,
         exceptions,
@@ -182,6 +200,7 @@ pub(super) fn zipper_tables<'a>(
         short_heads: h.flags & ZIPPER_SHORT_HEADS != 0,
         packed_lists: h.flags & ZIPPER_PACKED_LISTS != 0,
         inner_ring_starts: h.inner_ring_starts(),
+        ring_blocks_flag: h.flags & ZIPPER_RING_BLOCKS != 0,
     };
     debug_assert_eq!(tables.planes.count(), plane_array_words(m_r));
 
@@ -500,4 +519,41 @@ impl Words for AllRingStarts<'_> {
     fn count(&self) -> usize {
         self.rings as usize + 1
     }
+}
+
+/// [V57] with `RING_BLOCKS`: each field is the ring of its block's first vertex (the ring
+/// starts after 0 at or below it), and the bits past the last field are 0. `inner` holds the
+/// starts of rings 1 to `rings − 1`, checked already; `err(k, message)` locates field `k`.
+fn check_ring_blocks(
+    blocks: &Packed<LeWords>,
+    inner: &LeWords,
+    rings: u32,
+    m_r: u32,
+    err: impl Fn(usize, String) -> crate::Error,
+) -> Result<()> {
+    let starts: Vec<u32> = std::iter::once(0)
+        .chain((0..inner.count()).map(|i| inner.at(i)))
+        .chain(std::iter::once(m_r))
+        .collect();
+    debug_assert_eq!(starts.len(), rings as usize + 1);
+    let expected = crate::lr::zipper::ring_blocks(&starts, m_r);
+    for (k, (got, want)) in blocks.iter().zip(expected).enumerate() {
+        if got != want {
+            return Err(err(
+                k,
+                format!(
+                    "RING_BLOCKS field {k} says ring {got}, but vertex {} is on ring {want}",
+                    k << BLOCK_SHIFT
+                ),
+            ));
+        }
+    }
+    if !blocks.padding_is_zero() {
+        let last = blocks.count().saturating_sub(1);
+        return Err(err(
+            last,
+            "RING_BLOCKS: bits past its last field are set".into(),
+        ));
+    }
+    Ok(())
 }

@@ -174,6 +174,21 @@ fn ring_ends(t: &Tables, first: u32, count: usize) -> u64 {
             0
         };
     }
+    if t.ring_blocks.count() > 0 {
+        // RING_BLOCKS: the ends of the rings from the block's first vertex's on.
+        let end = first as u64 + count as u64;
+        let mut bits = 0;
+        let mut ring = t.ring_blocks.at((first >> BLOCK_SHIFT) as usize) as usize;
+        while ring < t.ring_count() {
+            let last = t.ring_start(ring + 1) as u64 - 1;
+            if last >= end {
+                break;
+            }
+            bits |= 1 << (last - first as u64);
+            ring += 1;
+        }
+        return bits;
+    }
     let word = |i: u32| {
         let i = (first / 32 + i) as usize;
         if i < t.ring_last.count() {

@@ -6,8 +6,8 @@ use crate::edgebreaker;
 use crate::error::Result;
 use crate::format::layout::{
     write_fields, Layout, LrbeHeader, LrtbHeader, StrpHeader, ZiprHeader, LRBE_TIP_BASES,
-    LR_BOUNDARIES_ON_RING, ZIPPER_INNER_RING_STARTS, ZIPPER_PACKED_LISTS, ZIPPER_SHORT_HEADS,
-    ZIPPER_WART_DELTAS,
+    LR_BOUNDARIES_ON_RING, ZIPPER_INNER_RING_STARTS, ZIPPER_PACKED_LISTS, ZIPPER_RING_BLOCKS,
+    ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
 };
 use crate::format::{Kind, Tag};
 use crate::ids::{Triangle, Vertex};
@@ -218,7 +218,11 @@ pub(super) fn zipper_section(z: &Zipper, shape: bool) -> Encoded {
         &layout,
         &[
             &t.ring_starts,
-            &t.ring_last,
+            if t.ring_blocks_flag && t.ring_count() > 1 {
+                &t.ring_blocks.words
+            } else {
+                &t.ring_last
+            },
             &t.ring_rank,
             &t.planes,
             &t.heads,
@@ -268,6 +272,11 @@ pub(crate) fn zipper_header(z: &Zipper) -> ZiprHeader {
             }
             | if t.inner_ring_starts {
                 ZIPPER_INNER_RING_STARTS
+            } else {
+                0
+            }
+            | if t.ring_blocks_flag {
+                ZIPPER_RING_BLOCKS
             } else {
                 0
             },

@@ -2,7 +2,7 @@
 //! way the decoder reads it back, then every slot and T0 opposite is decoded and compared
 //! with the standard LR's.
 
-use super::packed::{list_fields, Packed};
+use super::packed::{list_fields, ring_block_field, Packed};
 use super::tables::{plane_array_words, ZipperTables};
 use super::{
     BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, DELTAS, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT,
@@ -201,11 +201,12 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
         t0_codes.push(word);
     }
 
-    // The ring-end bits are only read with several rings.
-    let ring_bits = |bits: &Vec<u32>| match t.ring_count() {
-        0 | 1 => Vec::new(),
-        _ => bits.clone(),
-    };
+    // With several rings, the ring of each block's first vertex (RING_BLOCKS) stands for
+    // the ring-end bits and ranks.
+    let rings = t.ring_count() as u32;
+    let ring_blocks = ring_blocks(&t.ring_starts, m_r);
+    let ring_blocks = Packed::pack(&ring_blocks, [ring_block_field(rings); 2])
+        .ok_or_else(|| Error::Internal("zipper: a ring index wider than its field".into()))?;
     // Every list in as many bits as the counts call for (PACKED_LISTS).
     let fields = list_fields(
         true,
@@ -236,9 +237,10 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
     let inner = 1..t.ring_starts.len().saturating_sub(1).max(1);
     let z = ZipperTables {
         ring_starts: t.ring_starts[inner].to_vec(),
-        rings: t.ring_count() as u32,
-        ring_last: ring_bits(&t.ring_last),
-        ring_rank: ring_bits(&t.ring_rank),
+        rings,
+        ring_last: Vec::new(),
+        ring_rank: Vec::new(),
+        ring_blocks,
         planes,
         heads,
         super_counts,
@@ -256,6 +258,7 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
         short_heads: true,
         packed_lists: true,
         inner_ring_starts: true,
+        ring_blocks_flag: true,
     };
     same_as_standard(&z, t)?;
     Ok(z)
@@ -291,4 +294,24 @@ fn same_as_standard(z: &ZipperTables<Vec<u32>>, t: &LrTables<Vec<u32>>) -> Resul
         }
     }
     Ok(())
+}
+
+/// `RING_BLOCKS` (FORMAT.md §3.5e) of the rings starting at `starts` (ring 0 at 0, the last
+/// ending at `m_r`): for each block of 64 ring vertices, the ring of its first vertex, the
+/// number of ring starts after 0 at or below it; empty with fewer than two rings.
+pub(crate) fn ring_blocks(starts: &[u32], m_r: u32) -> Vec<u32> {
+    if starts.len() <= 2 {
+        return Vec::new();
+    }
+    let blocks = (m_r as usize).div_ceil(1 << BLOCK_SHIFT);
+    let mut ring = 0usize;
+    (0..blocks)
+        .map(|b| {
+            let first = (b << BLOCK_SHIFT) as u32;
+            while ring + 2 < starts.len() && starts[ring + 1] <= first {
+                ring += 1;
+            }
+            ring as u32
+        })
+        .collect()
 }

@@ -40,7 +40,10 @@ mod expand;
 mod packed;
 mod tables;
 
-pub use packed::{first_bit, list_fields, packed_words, Field, FieldKind, Packed};
+pub(crate) use encode::ring_blocks;
+pub use packed::{
+    first_bit, list_fields, packed_words, ring_block_field, Field, FieldKind, Packed,
+};
 pub(crate) use tables::Slot;
 pub(crate) use tables::LEFT_SLOTS;
 pub use tables::{plane_array_words, ZipperTables};

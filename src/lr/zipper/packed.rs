@@ -132,6 +132,15 @@ pub fn list_fields(
     ]
 }
 
+/// The field of `RING_BLOCKS` (FORMAT.md §3.5e, version 1.12): a ring index below `rings`,
+/// in `bits(rings − 1)` bits.
+pub fn ring_block_field(rings: u32) -> Field {
+    Field {
+        width: bits((rings as u64).saturating_sub(1)) as u8,
+        kind: FieldKind::Plain,
+    }
+}
+
 /// Words that `count` elements of `fields` take (even elements of `fields[0]`, odd of
 /// `fields[1]`).
 pub fn packed_words(count: u64, fields: [Field; 2]) -> u64 {

@@ -24,9 +24,12 @@ pub struct ZipperTables<W> {
     pub(crate) ring_starts: W,
     /// `R`: rings.
     pub(crate) rings: u32,
-    /// Empty with one ring (never read then).
+    /// Empty with one ring (never read then), and with `RING_BLOCKS`.
     pub(crate) ring_last: W,
     pub(crate) ring_rank: W,
+    /// With several rings and the header's `RING_BLOCKS` flag, the ring of each block's first
+    /// vertex; empty otherwise.
+    pub(crate) ring_blocks: Packed<W>,
     /// Per block: the three symbol planes.
     pub(crate) planes: W,
     /// Per block: the two anchors, the exceptions and the records before it (four words; two
@@ -63,6 +66,8 @@ pub struct ZipperTables<W> {
     pub(crate) packed_lists: bool,
     /// The header's `INNER_RING_STARTS` flag.
     pub(crate) inner_ring_starts: bool,
+    /// The header's `RING_BLOCKS` flag.
+    pub(crate) ring_blocks_flag: bool,
 }
 
 /// The symbol planes of one block and where a slot lies in them.
@@ -305,6 +310,12 @@ impl<W: Words> ZipperTables<W> {
         self.inner_ring_starts
     }
 
+    /// Whether the header's `RING_BLOCKS` flag is set (version 1.12): with several rings, the
+    /// ring of each block's first vertex stands for the ring-end bits and ranks.
+    pub fn ring_blocks(&self) -> bool {
+        self.ring_blocks_flag
+    }
+
     /// Whether the header's `WART_DELTAS` flag is set (version 1.8).
     pub fn wart_deltas(&self) -> bool {
         self.wart_deltas
@@ -348,6 +359,7 @@ impl<W: Words> ZipperTables<W> {
             + self.ring_starts.count()
             + self.ring_last.count()
             + self.ring_rank.count()
+            + self.ring_blocks.words.count()
             + self.part_words().iter().sum::<usize>()
             + self.c.words.count();
         4 * words as u64
@@ -378,6 +390,40 @@ impl<W: Words> LrLayout for ZipperTables<W> {
             r if r >= self.rings as usize => self.m_r,
             r => self.ring_starts.at(r - 1),
         }
+    }
+    /// With `RING_BLOCKS`: `v + 1` starts the next ring (OPERATORS.md §8).
+    #[inline(always)]
+    fn is_last(&self, v: u32) -> bool {
+        if self.ring_blocks.count() == 0 {
+            return self.ring_last.at(v as usize / 32) >> (v % 32) & 1 != 0;
+        }
+        v + 1 == self.ring_start(self.ring_of(v) + 1)
+    }
+    /// With `RING_BLOCKS`: the last ring starting at or before `v` among those from the ring
+    /// of `v`'s block's first vertex to that of the next block's (at most 17: a ring has 4
+    /// vertices or more), by bisection.
+    #[inline(always)]
+    fn ring_of(&self, v: u32) -> usize {
+        if self.ring_blocks.count() == 0 {
+            let word = self.ring_last.at(v as usize / 32) & ((1u32 << (v % 32)) - 1);
+            return (self.ring_rank.at(v as usize / 32) + word.count_ones()) as usize;
+        }
+        let block = (v >> BLOCK_SHIFT) as usize;
+        let mut low = self.ring_blocks.at(block) as usize;
+        let mut high = match block + 1 < self.ring_blocks.count() {
+            true => self.ring_blocks.at(block + 1) as usize,
+            false => self.rings as usize - 1,
+        };
+        // ring_start(r) = ring_starts[r − 1] for 0 < r < R.
+        while low < high {
+            let mid = (low + high).div_ceil(2);
+            if self.ring_starts.at(mid - 1) <= v {
+                low = mid;
+            } else {
+                high = mid - 1;
+            }
+        }
+        low
     }
     #[inline]
     fn ring_last_word(&self, i: usize) -> u32 {

@@ -38,6 +38,7 @@ fn counting<'a>(
         rings: z.rings,
         ring_last: w(&z.ring_last),
         ring_rank: w(&z.ring_rank),
+        ring_blocks: z.ring_blocks.map_words(w),
         planes: w(&z.planes),
         heads: w(&z.heads),
         exceptions: z.exceptions.map_words(w),
@@ -55,6 +56,7 @@ fn counting<'a>(
         short_heads: z.short_heads,
         packed_lists: z.packed_lists,
         inner_ring_starts: z.inner_ring_starts,
+        ring_blocks_flag: z.ring_blocks_flag,
     }
 }
 
@@ -119,7 +121,23 @@ fn every_operator_reads_a_bounded_number_of_words() {
     let mut rng = generate::Rng::new(9);
     let mut holes = generate::irregular_torus(50_000, 3);
     generate::punch_holes(&mut holes, 40, &mut rng);
+    // Rings of four vertices, sixteen to a block: the most ring starts `RING_BLOCKS` makes a
+    // vertex's ring walk past (FORMAT.md §3.5e.2).
+    let mut tetrahedra = crate::Mesh::new(Vec::new(), Vec::new());
+    let tetrahedron = crate::Mesh::new(
+        vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ],
+        vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]],
+    );
+    for _ in 0..48 {
+        generate::append(&mut tetrahedra, &tetrahedron);
+    }
     let meshes = [
+        tetrahedra,
         generate::torus(3, 4),
         generate::torus(30, 40),
         generate::irregular_torus(2_000, 1),
