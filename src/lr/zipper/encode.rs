@@ -234,9 +234,13 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
     }
     let mut packed = packed.into_iter();
     let mut list = || packed.next().expect("seven lists");
-    let inner = 1..t.ring_starts.len().saturating_sub(1).max(1);
+    // The starts of rings 1 to R − 1 (INNER_RING_STARTS): all but the first and the last.
+    let inner = match t.ring_starts.len() {
+        n if n > 2 => t.ring_starts[1..n - 1].to_vec(),
+        _ => Vec::new(),
+    };
     let z = ZipperTables {
-        ring_starts: t.ring_starts[inner].to_vec(),
+        ring_starts: inner,
         rings,
         ring_last: Vec::new(),
         ring_rank: Vec::new(),
