@@ -61,6 +61,19 @@ pub(crate) fn boundaries_on_ring_given<T: LrLayout>(tables: &T, without_opposite
     null_right == without_opposite
 }
 
+/// [`LrLayout::is_last`] from the ring-end bit vector.
+#[inline(always)]
+pub(crate) fn is_last_by_bits<T: LrLayout + ?Sized>(t: &T, v: u32) -> bool {
+    t.ring_last_word(v as usize / 32) >> (v % 32) & 1 != 0
+}
+
+/// [`LrLayout::ring_of`] from the ring-end bit vector and its ranks.
+#[inline(always)]
+pub(crate) fn ring_of_by_bits<T: LrLayout + ?Sized>(t: &T, v: u32) -> usize {
+    let word = t.ring_last_word(v as usize / 32) & ((1u32 << (v % 32)) - 1);
+    (t.ring_rank_word(v as usize / 32) + word.count_ones()) as usize
+}
+
 /// Ring bit vector and ranks for rings starting at `starts` (which ends with `m_r`).
 pub(crate) fn ring_bits(starts: &[u32]) -> (Vec<u32>, Vec<u32>) {
     let m_r = *starts.last().unwrap_or(&0) as usize;
@@ -223,17 +236,17 @@ pub trait LrLayout {
     /// tables when they are built or validated, never stored.
     fn boundaries_on_ring(&self) -> bool;
 
-    /// Whether `v` ends its ring.
+    /// Whether `v` ends its ring (by default from the ring-end bits).
     #[inline(always)]
     fn is_last(&self, v: u32) -> bool {
-        self.ring_last_word(v as usize / 32) >> (v % 32) & 1 != 0
+        is_last_by_bits(self, v)
     }
 
-    /// Index of the ring that holds `v`: the number of ring ends before `v`.
+    /// Index of the ring that holds `v`: the number of ring ends before `v` (by default from
+    /// the ring-end bits and ranks).
     #[inline(always)]
     fn ring_of(&self, v: u32) -> usize {
-        let word = self.ring_last_word(v as usize / 32) & ((1u32 << (v % 32)) - 1);
-        (self.ring_rank_word(v as usize / 32) + word.count_ones()) as usize
+        ring_of_by_bits(self, v)
     }
 
     /// `v.n`: the next vertex along `v`'s ring.

@@ -130,12 +130,16 @@ pub(super) fn zipper_tables<'a>(
     // tables keep the inner starts (rings 1 to R − 1) whether or not the file stores the
     // first and last.
     let bits = h.has_ring_bits().then_some((&ring_last, &ring_rank));
+    // Every start, 0 and m_r included (R + 1), for these rules and those of RING_BLOCKS.
+    let all: Vec<u32> = (0..=rings as usize)
+        .map(|r| match r {
+            _ if !h.inner_ring_starts() => ring_starts.at(r),
+            0 => 0,
+            r if r == rings as usize => m_r,
+            r => ring_starts.at(r - 1),
+        })
+        .collect();
     let ring_starts = if h.inner_ring_starts() {
-        let all = AllRingStarts {
-            inner: ring_starts,
-            rings,
-            m_r,
-        };
         // The implied end at fault: the last stored start leaves the last ring too short.
         // (The implied first start, 0, cannot be; with one ring [V56] keeps 4 ≤ m_r.)
         check_rings(&all, bits, m_r, |array, i, message| match (array, i) {
@@ -145,7 +149,7 @@ pub(super) fn zipper_tables<'a>(
                 Rule(57),
                 format!(
                     "ring start {} leaves fewer than 4 vertices to the last ring (m_r = {m_r})",
-                    all.at(i - 1)
+                    all[i - 1]
                 ),
             ),
             (0, i) if i == 0 || i >= rings as usize => f.err(4, Rule(57), message),
@@ -154,7 +158,7 @@ pub(super) fn zipper_tables<'a>(
         })?;
         ring_starts
     } else {
-        check_rings(&ring_starts, bits, m_r, |array, i, message| {
+        check_rings(&all, bits, m_r, |array, i, message| {
             word_err(array, i, Rule(57), message)
         })?;
         // Words 1 to R − 1 of the R + 1 (none with fewer than two rings).
@@ -168,7 +172,7 @@ pub(super) fn zipper_tables<'a>(
             let field = ring_block_field(rings);
             let count = h.ring_block_count() as usize;
             let blocks = Packed::new(ring_last, count, [field; 2]);
-            check_ring_blocks(&blocks, &ring_starts, rings, m_r, |k, message| {
+            check_ring_blocks(&blocks, &all, |k, message| {
                 let bit = first_bit([field; 2], k as u64);
                 f.err(starts[1] + (bit / 8) as usize, Rule(57), message)
             })?;
@@ -500,43 +504,15 @@ fn check_slots(
     Ok(flags)
 }
 
-/// Every ring start, `0` and `m_r` included, over the inner starts a file with
-/// `INNER_RING_STARTS` stores (FORMAT.md §3.5e), for the ring rules.
-struct AllRingStarts<'a> {
-    inner: LeWords<'a>,
-    rings: u32,
-    m_r: u32,
-}
-
-impl Words for AllRingStarts<'_> {
-    fn at(&self, i: usize) -> u32 {
-        match i {
-            0 => 0,
-            i if i >= self.rings as usize => self.m_r,
-            i => self.inner.at(i - 1),
-        }
-    }
-    fn count(&self) -> usize {
-        self.rings as usize + 1
-    }
-}
-
 /// [V57] with `RING_BLOCKS`: each field is the ring of its block's first vertex (the ring
-/// starts after 0 at or below it), and the bits past the last field are 0. `inner` holds the
-/// starts of rings 1 to `rings − 1`, checked already; `err(k, message)` locates field `k`.
+/// starts after 0 at or below it), and the bits past the last field are 0. `starts` are every
+/// ring's start, then `m_r`, checked already; `err(k, message)` locates field `k`.
 fn check_ring_blocks(
     blocks: &Packed<LeWords>,
-    inner: &LeWords,
-    rings: u32,
-    m_r: u32,
+    starts: &[u32],
     err: impl Fn(usize, String) -> crate::Error,
 ) -> Result<()> {
-    let starts: Vec<u32> = std::iter::once(0)
-        .chain((0..inner.count()).map(|i| inner.at(i)))
-        .chain(std::iter::once(m_r))
-        .collect();
-    debug_assert_eq!(starts.len(), rings as usize + 1);
-    let expected = crate::lr::zipper::ring_blocks(&starts, m_r);
+    let expected = crate::lr::zipper::ring_blocks(starts);
     for (k, (got, want)) in blocks.iter().zip(expected).enumerate() {
         if got != want {
             return Err(err(

@@ -204,7 +204,7 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
     // With several rings, the ring of each block's first vertex (RING_BLOCKS) stands for
     // the ring-end bits and ranks.
     let rings = t.ring_count() as u32;
-    let ring_blocks = ring_blocks(&t.ring_starts, m_r);
+    let ring_blocks = ring_blocks(&t.ring_starts);
     let ring_blocks = Packed::pack(&ring_blocks, [ring_block_field(rings); 2])
         .ok_or_else(|| Error::Internal("zipper: a ring index wider than its field".into()))?;
     // Every list in as many bits as the counts call for (PACKED_LISTS).
@@ -300,13 +300,14 @@ fn same_as_standard(z: &ZipperTables<Vec<u32>>, t: &LrTables<Vec<u32>>) -> Resul
     Ok(())
 }
 
-/// `RING_BLOCKS` (FORMAT.md §3.5e) of the rings starting at `starts` (ring 0 at 0, the last
-/// ending at `m_r`): for each block of 64 ring vertices, the ring of its first vertex, the
-/// number of ring starts after 0 at or below it; empty with fewer than two rings.
-pub(crate) fn ring_blocks(starts: &[u32], m_r: u32) -> Vec<u32> {
+/// `RING_BLOCKS` (FORMAT.md §3.5e) of the rings starting at `starts` (ring 0 at 0, then `m_r`
+/// last): for each block of 64 ring vertices, the ring of its first vertex, the number of
+/// ring starts after 0 at or below it; empty with fewer than two rings.
+pub(crate) fn ring_blocks(starts: &[u32]) -> Vec<u32> {
     if starts.len() <= 2 {
         return Vec::new();
     }
+    let m_r = starts[starts.len() - 1];
     let blocks = (m_r as usize).div_ceil(1 << BLOCK_SHIFT);
     let mut ring = 0usize;
     (0..blocks)

@@ -9,7 +9,7 @@ use super::{
     SUPER_SHIFT,
 };
 use crate::corner_table::NONE;
-use crate::lr::tables::{LrLayout, LEFT, NULL, VALUE, WART};
+use crate::lr::tables::{is_last_by_bits, ring_of_by_bits, LrLayout, LEFT, NULL, VALUE, WART};
 use crate::words::Words;
 
 /// The bits of the left slots of a block (slot `2i + side`).
@@ -395,7 +395,7 @@ impl<W: Words> LrLayout for ZipperTables<W> {
     #[inline(always)]
     fn is_last(&self, v: u32) -> bool {
         if self.ring_blocks.count() == 0 {
-            return self.ring_last.at(v as usize / 32) >> (v % 32) & 1 != 0;
+            return is_last_by_bits(self, v);
         }
         v + 1 == self.ring_start(self.ring_of(v) + 1)
     }
@@ -405,8 +405,7 @@ impl<W: Words> LrLayout for ZipperTables<W> {
     #[inline(always)]
     fn ring_of(&self, v: u32) -> usize {
         if self.ring_blocks.count() == 0 {
-            let word = self.ring_last.at(v as usize / 32) & ((1u32 << (v % 32)) - 1);
-            return (self.ring_rank.at(v as usize / 32) + word.count_ones()) as usize;
+            return ring_of_by_bits(self, v);
         }
         let block = (v >> BLOCK_SHIFT) as usize;
         let mut low = self.ring_blocks.at(block) as usize;
