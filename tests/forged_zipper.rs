@@ -106,7 +106,7 @@ fn verified_rule(bytes: &[u8]) -> Rule {
 /// [V56] `ZIPR` counts and length. (`m < 0x3FFFFFFF` cannot break alone: `m = V`.)
 #[test]
 fn v56_zipr_counts() {
-    // m = m_r = 25, R = 1, n0 = 3, X = 6, I = 9, P = 0, E = 0.
+    // m = m_r = 25, R = 1, n0 = 3, X = 5, I = 8, P = 1, E = 0.
     let bytes = vector("torus_with_t0.zipper.lrm");
     let at = section_at(&bytes, Tag::ZIPR);
     let field = |f: usize, x: u32| forge(&bytes, Tag::ZIPR, |p| put(p, f, x));
@@ -129,17 +129,27 @@ fn v56_zipr_counts() {
         breaks(&field(4, m_r), 56, "ZIPR", at + 4, "ring vertices");
     }
     breaks(&field(12, 0x4000_0000), 56, "ZIPR", at + 12, "32 bits");
-    for (f, x) in [(12, 5), (16, 22), (20, 8), (24, 1), (28, 3), (8, 2)] {
-        breaks(&field(f, x), 56, "ZIPR", at, "counts call for");
+    // Each count made larger than the file's.
+    let count =
+        |f: usize| u32::from_le_bytes(payload(&bytes, Tag::ZIPR)[f..f + 4].try_into().unwrap());
+    for (f, more) in [(12, 2), (16, 16), (20, 16), (24, 16), (28, 3), (8, 1)] {
+        breaks(
+            &field(f, count(f) + more),
+            56,
+            "ZIPR",
+            at,
+            "counts call for",
+        );
     }
     let bad = forge(&bytes, Tag::ZIPR, |p| p.push(0));
     breaks(&bad, 56, "ZIPR", at, "counts call for");
     let bad = forge(&bytes, Tag::ZIPR, |p| p.truncate(36));
     breaks(&bad, 56, "ZIPR", at, "header");
-    // PACKED_LISTS: the bits of a list's last word past its last field are 0. Six
-    // exceptions of 6 bits (a vertex of 25 and the WART flag) leave 28 bits of their second
+    // PACKED_LISTS: the bits of a list's last word past its last field are 0. Five
+    // exceptions of 6 bits (a vertex of 25 and the WART flag) leave the top 2 bits of their
     // word.
     assert_eq!(zipr_width(&bytes, EXCEPTIONS, 0), 6);
+    assert_eq!(count(16), 5);
     let last_word = zipr_at(&bytes, RECORDS, 0) - 4;
     let bad = forge(&bytes, Tag::ZIPR, |p| {
         let i = (last_word - at) as usize;
@@ -261,7 +271,7 @@ fn v58_symbols_and_heads() {
 /// [V59] T0 rows: vertices below `m`, explicit opposites counted in order, all used.
 #[test]
 fn v59_t0_rows() {
-    let bytes = vector("genus3_torus.zipper.lrm"); // m = 19, 10 rows, 14 explicit opposites
+    let bytes = vector("genus3_torus.zipper.lrm"); // m = 19, 10 rows, 12 explicit opposites
     field_breaks(&bytes, T0_V, 4, 19, 59, "out of range");
     let codes: Vec<u32> = (0..10).map(|j| zipr_get(&bytes, T0_CODES, j)).collect();
     let bad = zipr_set(&bytes, T0_CODES, 0, codes[0] + (1 << 6));
@@ -286,11 +296,11 @@ fn v59_t0_rows() {
 /// LR rules every layout keeps.
 #[test]
 fn v60_corners_and_lr_rules() {
-    let defective = vector("defective_torus.zipper.lrm"); // 7 off-ring vertices
+    let defective = vector("defective_torus.zipper.lrm"); // 7 off-ring vertices, 4 T0 rows
     let width = zipr_width(&defective, C, 0);
     // Packed corners are stored plus one (0 for NONE): corner 3, a corner past the T0
     // rows, the largest the field holds.
-    for x in [4, 8 * 16 + 4 * 5 + 2, (1 << width) - 1] {
+    for x in [4, 8 * 16 + 4 * 4 + 2, (1 << width) - 1] {
         field_breaks(&defective, C, 0, x, 60, "not a corner");
     }
     let bytes = vector("genus3_torus.zipper.lrm"); // m = 19, explicit T0 opposites

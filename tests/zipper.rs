@@ -14,17 +14,8 @@ use proptest::prelude::*;
 
 fn check_zipper(mesh: &Mesh, options: &LrOptions) -> Zipper {
     let table = CornerTable::from_mesh(mesh).unwrap();
-    let zipper = Zipper::build(&table, options).unwrap();
+    let zipper = check_zipper_of(&table, mesh, |t| Zipper::build(t, options).unwrap());
     let tables = zipper.tables();
-    let key = |c: lrmesh::Corner| {
-        (
-            zipper.input_triangle(tables.triangle(c)),
-            zipper.input_vertex(tables.vertex(c)),
-        )
-    };
-    let position = |v: lrmesh::Vertex| mesh.positions[zipper.input_vertex(v) as usize];
-    check_against_table(tables, key, position, &table, mesh);
-    assert_same_up_to_rotation(&zipper.input_triangles(), &mesh.triangles, "zipper");
     let stats = zipper.stats();
     assert_eq!(stats.bytes, tables.stored_bytes());
     zipper
@@ -112,6 +103,103 @@ fn corpus_and_shared_meshes() {
             );
         }
     }
+}
+
+/// `Zipper::build_smallest` keeps the smallest tables of its seeds (the first of equals),
+/// whatever the thread count, and they answer every corner as the corner table does.
+#[test]
+fn the_smallest_of_several_seeds() {
+    let mut mesh = generate::irregular_torus(600, 3);
+    generate::punch_holes(&mut mesh, 6, &mut Rng::new(2));
+    let table = CornerTable::from_mesh(&mesh).unwrap();
+    let options = LrOptions {
+        seed: 7,
+        ..LrOptions::default()
+    };
+    let sizes: Vec<u64> = (0..12)
+        .map(|k| {
+            let seed = 7 + k;
+            let z = Zipper::build(&table, &LrOptions { seed, ..options }).unwrap();
+            z.tables().stored_bytes()
+        })
+        .collect();
+    let smallest = *sizes.iter().min().unwrap();
+    let first = sizes.iter().position(|&b| b == smallest).unwrap() as u64;
+    assert!(
+        smallest < sizes[0],
+        "the seeds give different sizes: {sizes:?}"
+    );
+    let expected = Zipper::build(
+        &table,
+        &LrOptions {
+            seed: 7 + first,
+            ..options
+        },
+    )
+    .unwrap();
+    for threads in [1, 2, 5] {
+        let z = Zipper::build_smallest(&table, &LrOptions { threads, ..options }, 12).unwrap();
+        assert_eq!(z.tables(), expected.tables(), "{threads} threads");
+    }
+    let z = check_zipper_of(&table, &mesh, |t| {
+        Zipper::build_smallest(t, &options, 12).unwrap()
+    });
+    assert_eq!(z.tables().stored_bytes(), smallest);
+    // One seed: the one build.
+    let one = Zipper::build_smallest(&table, &options, 1).unwrap();
+    assert_eq!(one.tables().stored_bytes(), sizes[0]);
+}
+
+/// The writer's search: one seed below the default level, up to 32 seeds at it on a small
+/// mesh, fewer as meshes grow, one from 2^19 triangles; more at higher levels.
+#[test]
+fn seeds_by_level_and_size() {
+    use lrmesh::write::zipper_seeds;
+    assert_eq!(zipper_seeds(0, 100), 1);
+    assert_eq!(zipper_seeds(5, 100), 1);
+    assert_eq!(zipper_seeds(6, 100), 32);
+    assert_eq!(zipper_seeds(6, 1 << 16), 8);
+    assert_eq!(zipper_seeds(6, 1 << 18), 2);
+    assert_eq!(zipper_seeds(6, 1 << 19), 1);
+    assert_eq!(zipper_seeds(6, 3_300_000), 1);
+    assert_eq!(zipper_seeds(7, 100), 64);
+    assert_eq!(zipper_seeds(9, 100), 256);
+    assert_eq!(zipper_seeds(9, 1 << 16), 64);
+    assert_eq!(zipper_seeds(9, 0), 256);
+    // The file `encode` writes at the default level holds the smallest tables.
+    let mesh = generate::irregular_torus(400, 9);
+    let encode = |level| {
+        let options = lrmesh::write::EncodeOptions {
+            connectivity: lrmesh::write::Connectivity::Zipper,
+            level,
+            ..Default::default()
+        };
+        lrmesh::write::encode(&mesh, &options).unwrap().len()
+    };
+    assert!(
+        encode(6) < encode(5),
+        "the search finds a smaller ring on this mesh"
+    );
+}
+
+/// [`check_zipper`] of the Zipper that `build` makes from `table` (of `mesh`).
+fn check_zipper_of(
+    table: &CornerTable,
+    mesh: &Mesh,
+    build: impl Fn(&CornerTable) -> Zipper,
+) -> Zipper {
+    let zipper = build(table);
+    let tables = zipper.tables();
+    let key = |c: lrmesh::Corner| {
+        (
+            zipper.input_triangle(tables.triangle(c)),
+            zipper.input_vertex(tables.vertex(c)),
+        )
+    };
+    let position = |v: lrmesh::Vertex| mesh.positions[zipper.input_vertex(v) as usize];
+    check_against_table(tables, key, position, table, mesh);
+    assert_same_up_to_rotation(&zipper.input_triangles(), &mesh.triangles, "zipper");
+    zipper
 }
 
 proptest! {

@@ -100,7 +100,8 @@ pub struct EncodeOptions {
     pub position_bits: Option<u8>,
     /// Compression level, 0 to 9. Level 0 stores positions raw (f32, or 16-bit words), the
     /// fastest to write and to open; from level 1 they are coded: predicted and range coded
-    /// for Edgebreaker, in random-access blocks for the other kinds.
+    /// for Edgebreaker, in random-access blocks for the other kinds. From level 6 the Zipper
+    /// of a small mesh is the smallest of several seeds' ([`zipper_seeds`]).
     pub level: u8,
     /// f32 normals stored octahedral, two integers of this many bits (1 to 24) per normal
     /// (FORMAT.md §3.9.1): lossy; `None` keeps the f32s exactly.
@@ -423,9 +424,31 @@ fn make(table: &CornerTable, options: &EncodeOptions) -> Result<Option<Made>> {
                 tip_bases: options.tip_bases,
             },
         )?)),
-        Connectivity::Zipper => Some(Made::Zipper(Zipper::build(table, &options.lr)?)),
+        Connectivity::Zipper => {
+            let seeds = zipper_seeds(options.level, table.v_table().len() / 3);
+            Some(Made::Zipper(Zipper::build_smallest(
+                table,
+                &options.lr,
+                seeds,
+            )?))
+        }
         Connectivity::Edgebreaker => None,
     })
+}
+
+/// How many ring seeds the `zipper` encoder tries at `level` on a mesh of `triangles`
+/// ([`Zipper::build_smallest`]): one below the default level; from it, as many as fit a
+/// budget of constructions, 2^19 triangles' worth at level 6 and twice as many at each
+/// level above, at most 32 at level 6 and twice as many at each level above. So the search
+/// costs a small mesh at most about one 2^19-triangle build at the default level, and a mesh
+/// of 2^19 triangles or more is built once.
+pub fn zipper_seeds(level: u8, triangles: usize) -> u32 {
+    let Some(above) = level.checked_sub(DEFAULT_LEVEL) else {
+        return 1;
+    };
+    let above = u32::from(above.min(3));
+    let budget = (1usize << 19) << above;
+    (budget / triangles.max(1)).clamp(1, 32 << above) as u32
 }
 
 /// The section of a connectivity built here.

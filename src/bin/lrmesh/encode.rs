@@ -48,7 +48,9 @@ pub struct Args {
     /// Compression level, 0 to 9: 0 stores positions raw (f32, or 16-bit words: the fastest
     /// to write and to open); from 1, Edgebreaker predicts them and range codes the residuals,
     /// and the random-access kinds store positions in blocks (exact ones when that is smaller
-    /// than raw f32).
+    /// than raw f32). From 6, `zipper` on a small mesh builds its ring from several seeds (from
+    /// --seed on: up to 32 at 6, twice as many at each level above, within a fixed budget of
+    /// work) and keeps the smallest tables.
     #[arg(short, long, default_value_t = write::DEFAULT_LEVEL,
           value_parser = clap::value_parser!(u8).range(0..=9))]
     level: u8,

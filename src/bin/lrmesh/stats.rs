@@ -100,7 +100,14 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
     let strips = progress::step("building strips", || {
         StripStats::from_built(&mesh, &table, &lr, &StripOptions::default())
     })?;
-    let zipper = progress::step("encoding the Zipper", || Zipper::encode(lr))?.stats();
+    // As `encode` builds it at the default level: on a small mesh, the smallest of several
+    // seeds' rings.
+    let seeds = lrmesh::write::zipper_seeds(lrmesh::write::DEFAULT_LEVEL, mesh.triangles.len());
+    let zipper = progress::step("encoding the Zipper", || match seeds {
+        1 => Zipper::encode(lr),
+        _ => Zipper::build_smallest(&table, &lr_options, seeds),
+    })?
+    .stats();
     if args.json {
         show_json(&serde_json::json!({
             "lr": stats,

@@ -120,6 +120,60 @@ impl Zipper {
         Zipper::encode(Lr::build(ct, options)?)
     }
 
+    /// The smallest of the Zipper tables built from `seeds` seeds: `options.seed` and those
+    /// after it. Where the ring expansions start decides the ring, and so how many slots
+    /// the symbols cannot code (exceptions, records) and how many T0 rows there are: on
+    /// small meshes the smallest of 16 builds is 5–12% below the first. Of equal sizes the
+    /// first seed's is kept, so that the same options give the same tables. The seeds are
+    /// shared round robin among up to `options.threads` threads, each build on one.
+    ///
+    /// # Errors
+    /// As [`Zipper::build`].
+    pub fn build_smallest(ct: &CornerTable, options: &LrOptions, seeds: u32) -> Result<Zipper> {
+        if seeds <= 1 {
+            return Zipper::build(ct, options);
+        }
+        let workers = options.threads.clamp(1, seeds);
+        let one = LrOptions {
+            threads: 1,
+            ..*options
+        };
+        // Worker w builds seeds w, w + workers, ...: its smallest (size, seed index, tables).
+        let best_of = |w: u32| -> Result<Option<(u64, u32, Zipper)>> {
+            let mut best: Option<(u64, u32, Zipper)> = None;
+            for k in (w..seeds).step_by(workers as usize) {
+                let seed = options.seed.wrapping_add(u64::from(k));
+                let z = Zipper::build(ct, &LrOptions { seed, ..one })?;
+                let bytes = z.tables.stored_bytes();
+                if best.as_ref().is_none_or(|(b, _, _)| bytes < *b) {
+                    best = Some((bytes, k, z));
+                }
+            }
+            Ok(best)
+        };
+        let results: Vec<Result<Option<(u64, u32, Zipper)>>> = std::thread::scope(|scope| {
+            let handles: Vec<_> = (1..workers)
+                .map(|w| scope.spawn(move || best_of(w)))
+                .collect();
+            let first = best_of(0);
+            // A worker only panics on a broken invariant: pass it on.
+            let rest = handles
+                .into_iter()
+                .map(|h| h.join().expect("zipper worker"));
+            std::iter::once(first).chain(rest).collect()
+        });
+        let mut best: Option<(u64, u32, Zipper)> = None;
+        for result in results {
+            if let Some((bytes, k, z)) = result? {
+                if best.as_ref().is_none_or(|(b, j, _)| (bytes, k) < (*b, *j)) {
+                    best = Some((bytes, k, z));
+                }
+            }
+        }
+        best.map(|(_, _, z)| z)
+            .ok_or_else(|| crate::Error::Internal("zipper: no seed built".into()))
+    }
+
     /// Encodes a standard LR (same vertex, triangle and corner ids).
     ///
     /// # Errors
