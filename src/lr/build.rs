@@ -39,8 +39,27 @@ impl Lr {
         Lr::from_rings(ct, prepared, rings, options)
     }
 
+    /// [`Lr::build`] for an encoder that keeps only the counts and the maps to the input
+    /// ([`Lr::into_input_maps`]): the maps from the input are left empty, so the result
+    /// must not answer [`Lr::lr_vertex`] or [`Lr::lr_triangle`].
+    pub(crate) fn build_for_encoding(ct: &CornerTable, options: &LrOptions) -> Result<Lr> {
+        let prepared = Prepared::new(ct)?;
+        let rings = prepared.rings(0, options);
+        Lr::for_encoding_from_rings(ct, prepared, rings, options)
+    }
+
+    /// [`Lr::from_rings`] for an encoder, as [`Lr::build_for_encoding`].
+    pub(super) fn for_encoding_from_rings(
+        ct: &CornerTable,
+        prepared: Prepared,
+        rings: Rings,
+        options: &LrOptions,
+    ) -> Result<Lr> {
+        Ok(Lr::tables_from_rings(ct, prepared, rings, options)?.finish_with(ct, false))
+    }
+
     /// The LR of `ct` with the rings `rings` of its closed mesh `prepared`.
-    pub(super) fn from_rings(
+    fn from_rings(
         ct: &CornerTable,
         prepared: Prepared,
         rings: Rings,
@@ -333,6 +352,11 @@ impl Partial {
     /// The LR: its C table and the maps back to the input, each working array freed once
     /// read.
     pub(super) fn finish(self, ct: &CornerTable) -> Lr {
+        self.finish_with(ct, true)
+    }
+
+    /// [`Partial::finish`], with the maps from the input only when `from_input`.
+    fn finish_with(self, ct: &CornerTable, from_input: bool) -> Lr {
         let Partial {
             lr: mut lr_struct,
             lr_vertex,
@@ -355,9 +379,12 @@ impl Partial {
                     if c == NONE { NONE } else { ct_to_lr(c) };
             }
         }
-        lr_struct.input_vertex_lr = vec![NONE; ct.input_vertex_count() as usize];
-        for x in (0..m).rev() {
-            lr_struct.input_vertex_lr[ct.original_vertex(Vertex(x)).idx()] = lr_vertex[x as usize];
+        if from_input {
+            lr_struct.input_vertex_lr = vec![NONE; ct.input_vertex_count() as usize];
+            for x in (0..m).rev() {
+                let input = ct.original_vertex(Vertex(x)).idx();
+                lr_struct.input_vertex_lr[input] = lr_vertex[x as usize];
+            }
         }
         drop(lr_vertex);
         let ids = 2 * m_r as usize + lr_struct.tables.t0_count() as usize;
@@ -366,6 +393,9 @@ impl Partial {
             lr_struct.maps.triangle_input[(w / 4) as usize] = ct.input_triangle(Triangle(t as u32));
         }
         drop(triangle_lr);
+        if !from_input {
+            return lr_struct;
+        }
         // The inverse of `triangle_input` (ids of redundant slots and missing right
         // triangles hold NONE).
         let inputs = lr_struct.maps.counts.triangles as usize + ct.kept_aside().len();

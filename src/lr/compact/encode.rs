@@ -30,7 +30,7 @@ impl CompactLr {
         let prepared = Prepared::new(ct)?;
         let period = choose_period(&prepared, &options.periods, &options.lr);
         let rings = prepared.rings(period, &options.lr);
-        let lr = Lr::from_rings(ct, prepared, rings, &options.lr)?;
+        let lr = Lr::for_encoding_from_rings(ct, prepared, rings, &options.lr)?;
         CompactLr::encode(lr, period, options.tip_bases)
     }
 

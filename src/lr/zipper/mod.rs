@@ -117,7 +117,7 @@ impl Zipper {
     /// [`Error::Unsupported`](crate::Error::Unsupported) when the mesh exceeds the LR's id
     /// space.
     pub fn build(ct: &CornerTable, options: &LrOptions) -> Result<Zipper> {
-        Zipper::encode(Lr::build(ct, options)?)
+        Zipper::encode(Lr::build_for_encoding(ct, options)?)
     }
 
     /// The smallest of the Zipper tables built from `seeds` seeds: `options.seed` and those
