@@ -345,6 +345,10 @@ pub(super) fn scan_slots(t: &Tables) -> Option<(SlotBits, u64)> {
     let mut canonical = 0u64;
     let (mut exceptions, mut records) = (0usize, 0usize);
     let mut bad = false;
+    // Each block's chained tips: written for its stored slots first, then (when the range
+    // test cannot clear the block) for its delta slots; every other entry is masked out
+    // where it is read, so the array is not cleared between blocks (512 bytes a block).
+    let mut chained = [0u32; 128];
     for block in 0..(m_r as usize).div_ceil(1 << BLOCK_SHIFT) {
         // Spelled out: through an array's `map` the head reads were not inlined.
         bad |= (t.before_block(block, 0) != exceptions) | (t.before_block(block, 1) != records);
@@ -357,7 +361,6 @@ pub(super) fn scan_slots(t: &Tables) -> Option<(SlotBits, u64)> {
         // exception and irregular slots (a few in a hundred). First the stored words, in
         // slot order (a list's words are used in that order).
         let stored = slot.stored();
-        let mut chained = [0u32; 128];
         // Each list's words in its own slot order; the WART bits set in 64-bit halves (a
         // `u128` shift by a variable amount costs a branch).
         let mut wart_halves = [0u64; 2];
