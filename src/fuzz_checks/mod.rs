@@ -204,6 +204,21 @@ fn base_sections(choice: u8) -> Vec<crate::write::SectionBytes> {
 /// positions in `GEOM` encoding 6), 7 seams and parts (with JSON labels at level 0 on the
 /// smallest torus without holes, else coded).
 pub fn forged_base(choice: u8) -> Vec<u8> {
+    thread_local! {
+        /// The bases made so far, by choice: a base is the same every time, and encoding it
+        /// was most of a run of the forging targets (the Zipper's from 32 seeds' rings).
+        static MADE: std::cell::RefCell<Vec<Option<Vec<u8>>>> =
+            std::cell::RefCell::new(vec![None; 256]);
+    }
+    MADE.with_borrow_mut(|made| {
+        made[choice as usize]
+            .get_or_insert_with(|| make_forged_base(choice))
+            .clone()
+    })
+}
+
+/// [`forged_base`], made.
+fn make_forged_base(choice: u8) -> Vec<u8> {
     let kind = match choice & 3 {
         0 => Connectivity::Lr,
         1 if choice & 4 != 0 => Connectivity::Zipper,
