@@ -359,6 +359,17 @@ fn values_listing(name: &str, bytes: &[u8]) -> Option<String> {
     Some(out)
 }
 
+/// The source mesh of vector `name` (OFF, or OBJ for those of [`OBJ_VECTORS`]).
+fn source_mesh(name: &str) -> lrmesh::Mesh {
+    let extension = if OBJ_VECTORS.contains(&name) {
+        "obj"
+    } else {
+        "off"
+    };
+    let source = dir().join(format!("{name}.{extension}"));
+    read_mesh(&source, &ReadOptions::default()).unwrap().mesh
+}
+
 #[test]
 fn vectors_match() {
     let regenerate = std::env::var_os("LRMESH_REGENERATE_VECTORS").is_some();
@@ -388,13 +399,7 @@ fn vectors_match() {
             if level != default && connectivity != Connectivity::Edgebreaker {
                 continue;
             }
-            let extension = if OBJ_VECTORS.contains(&name) {
-                "obj"
-            } else {
-                "off"
-            };
-            let source = dir().join(format!("{name}.{extension}"));
-            let mesh = read_mesh(&source, &ReadOptions::default()).unwrap().mesh;
+            let mesh = source_mesh(name);
             let bytes = encode(&mesh, &options(name, connectivity, bits, level)).unwrap();
             let stem = format!("{name}{grid}{suffix}");
             let lrm = dir().join(format!("{stem}.lrm"));
@@ -500,13 +505,7 @@ fn zipper_files_of_versions_1_7_to_1_10_read_the_same() {
             "two_components" => &versions[3..],
             _ => &versions[..],
         };
-        let extension = if OBJ_VECTORS.contains(&name) {
-            "obj"
-        } else {
-            "off"
-        };
-        let source = dir().join(format!("{name}.{extension}"));
-        let mesh = read_mesh(&source, &ReadOptions::default()).unwrap().mesh;
+        let mesh = source_mesh(name);
         let one_seed = options(name, Connectivity::Zipper, None, 5);
         assert_eq!(lrmesh::write::zipper_seeds(5, mesh.triangles.len()), 1);
         let current = encode(&mesh, &one_seed).unwrap();

@@ -102,7 +102,8 @@ pub fn run(args: Args) -> lrmesh::Result<()> {
     })?;
     // As `encode` builds it at the default level: on a small mesh, the smallest of several
     // seeds' rings.
-    let seeds = lrmesh::write::zipper_seeds(lrmesh::write::DEFAULT_LEVEL, mesh.triangles.len());
+    let triangles = table.v_table().len() / 3;
+    let seeds = lrmesh::write::zipper_seeds(lrmesh::write::DEFAULT_LEVEL, triangles);
     let zipper = progress::step("encoding the Zipper", || match seeds {
         1 => Zipper::encode(lr),
         _ => Zipper::build_smallest(&table, &lr_options, seeds),

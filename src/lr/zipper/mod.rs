@@ -139,19 +139,16 @@ impl Zipper {
             ..*options
         };
         // Worker w builds seeds w, w + workers, ...: its smallest (size, seed index, tables).
-        let best_of = |w: u32| -> Result<Option<(u64, u32, Zipper)>> {
-            let mut best: Option<(u64, u32, Zipper)> = None;
+        let best_of = |w: u32| -> Result<Option<Candidate>> {
+            let mut best = None;
             for k in (w..seeds).step_by(workers as usize) {
                 let seed = options.seed.wrapping_add(u64::from(k));
                 let z = Zipper::build(ct, &LrOptions { seed, ..one })?;
-                let bytes = z.tables.stored_bytes();
-                if best.as_ref().is_none_or(|(b, _, _)| bytes < *b) {
-                    best = Some((bytes, k, z));
-                }
+                keep_smaller(&mut best, (z.tables.stored_bytes(), k, z));
             }
             Ok(best)
         };
-        let results: Vec<Result<Option<(u64, u32, Zipper)>>> = std::thread::scope(|scope| {
+        let results: Vec<Result<Option<Candidate>>> = std::thread::scope(|scope| {
             let handles: Vec<_> = (1..workers)
                 .map(|w| scope.spawn(move || best_of(w)))
                 .collect();
@@ -162,12 +159,10 @@ impl Zipper {
                 .map(|h| h.join().expect("zipper worker"));
             std::iter::once(first).chain(rest).collect()
         });
-        let mut best: Option<(u64, u32, Zipper)> = None;
+        let mut best = None;
         for result in results {
-            if let Some((bytes, k, z)) = result? {
-                if best.as_ref().is_none_or(|(b, j, _)| (bytes, k) < (*b, *j)) {
-                    best = Some((bytes, k, z));
-                }
+            if let Some(candidate) = result? {
+                keep_smaller(&mut best, candidate);
             }
         }
         best.map(|(_, _, z)| z)
@@ -240,6 +235,20 @@ impl Zipper {
             record_bits: bits(parts[2]),
             t0_bits: bits(parts[3]),
         }
+    }
+}
+
+/// A Zipper of [`Zipper::build_smallest`]'s search: its size in bytes, its seed's index, it.
+type Candidate = (u64, u32, Zipper);
+
+/// Makes `best` the smaller of it and `candidate` by size, then seed index (the first seed's
+/// of equal sizes).
+fn keep_smaller(best: &mut Option<Candidate>, candidate: Candidate) {
+    if best
+        .as_ref()
+        .is_none_or(|(b, j, _)| (candidate.0, candidate.1) < (*b, *j))
+    {
+        *best = Some(candidate);
     }
 }
 
