@@ -524,7 +524,14 @@ fn summarize_reads_headers_only() {
             .sections
             .iter()
             .find(|s| s.tag.name() != "GEOM" && s.flags.is_required() && s.bytes.len() > 64)
-            .map(|s| (s.offset as usize, s.bytes.len()))
+            .map(|s| {
+                // The header's vertex count: the first word, but for a compact `ZIPR`'s.
+                let count = match s.tag.name().as_str() {
+                    "ZIPR" => lrmesh::format::layout::ZiprHeader::read(s.bytes).count_offset(0),
+                    _ => 0,
+                };
+                (s.offset as usize, s.bytes.len(), count)
+            })
             .unwrap();
         // A byte in the middle of the connectivity's data, then in its header.
         let mut damaged = bytes.clone();
@@ -537,7 +544,7 @@ fn summarize_reads_headers_only() {
         );
         if connectivity != Connectivity::Edgebreaker {
             let mut damaged = bytes.clone();
-            damaged[data.0] ^= 0x01; // the header's vertex count
+            damaged[data.0 + data.2] ^= 0x01; // the header's vertex count
             let e = lrmesh::read::summarize(&damaged, &limits).unwrap_err();
             assert!(matches!(e, Error::Format(_)), "{connectivity:?}: {e}");
         }

@@ -5,7 +5,7 @@
 mod common;
 
 use common::forge::*;
-use lrmesh::format::layout::ZiprHeader;
+use lrmesh::format::layout::{ZiprHeader, ZIPPER_COMPACT};
 use lrmesh::format::Tag;
 use lrmesh::read::{open, open_verified, Limits, SEMANTIC_RULES};
 use lrmesh::{Error, Rule};
@@ -19,12 +19,25 @@ const T0_V: usize = 8;
 const T0_CODES: usize = 9;
 const EXPLICIT: usize = 10;
 const C: usize = 11;
+const SUPER: usize = 12;
+/// Not an array: in the compact form (version 1.13) the anchors' list, the first part of
+/// `HEADS` (whose elements [`zipr_bits`] then gives as the counts' list's).
+const ANCHORS: usize = 13;
 
 /// Where element `i` of array `index` lies within `ZIPR`: its first bit and its width. The
 /// seven lists (`EXCEPTIONS` to `C`) are bit fields with `PACKED_LISTS` (FORMAT.md §3.5e),
 /// the other arrays and every array of an older file 32-bit words.
 fn zipr_bits(p: &[u8], index: usize, i: usize) -> (usize, u32) {
     let header = ZiprHeader::read(p);
+    let heads = 8 * header.layout().unwrap().arrays[HEADS].start;
+    if let (HEADS | ANCHORS, Some((anchor, counts))) = (index, header.head_fields()) {
+        let (start, fields) = match index {
+            ANCHORS => (heads, anchor),
+            _ => (heads + 32 * header.anchor_words() as usize, counts),
+        };
+        let bit = lrmesh::lr::zipper::first_bit(fields, i as u64) as usize;
+        return (start + bit, fields[i % 2].width as u32);
+    }
     let start = 8 * header.layout().unwrap().arrays[index].start;
     if !(EXCEPTIONS..=C).contains(&index) {
         return (start + 32 * i, 32);
@@ -75,6 +88,68 @@ fn zipr_set(bytes: &[u8], index: usize, i: usize, x: u32) -> Vec<u8> {
     })
 }
 
+/// Where the flags of `ZIPR` lie in the section and their value: word 0 less bit 31 in
+/// the compact form, word 8 in the 40-byte header.
+fn zipr_flags(bytes: &[u8]) -> (usize, u32) {
+    let p = payload(bytes, Tag::ZIPR);
+    match ZiprHeader::is_compact(&p) {
+        true => (0, get(&p, 0) & !ZIPPER_COMPACT),
+        false => (32, get(&p, 32)),
+    }
+}
+
+/// `bytes` with the flags of `ZIPR` set to `flags` (either header form).
+fn with_zipr_flags(bytes: &[u8], flags: u32) -> Vec<u8> {
+    let (at, _) = zipr_flags(bytes);
+    let compact = if at == 0 { ZIPPER_COMPACT } else { 0 };
+    forge(bytes, Tag::ZIPR, |p| put(p, at, flags | compact))
+}
+
+/// `bytes` with the compact header of `ZIPR` rewritten by `edit` (the arrays kept).
+fn with_header(bytes: &[u8], edit: impl FnOnce(&mut ZiprHeader)) -> Vec<u8> {
+    forge(bytes, Tag::ZIPR, |p| {
+        let old = ZiprHeader::read(p);
+        let mut header = old;
+        edit(&mut header);
+        let mut out = header.to_bytes();
+        out.extend_from_slice(&p[old.header_len()..]);
+        *p = out;
+    })
+}
+
+/// `bytes` with the anchors of its compact `ZIPR` rewritten `width` bits wide (the same
+/// values; the writer's are 0 bits wide).
+fn with_anchor_bits(bytes: &[u8], width: u8) -> Vec<u8> {
+    use lrmesh::lr::zipper::{Field, FieldKind, Packed};
+    let p = payload(bytes, Tag::ZIPR);
+    let header = ZiprHeader::read(&p);
+    let n = 2 * header.blocks() as usize;
+    let values: Vec<u32> = (0..n).map(|i| zipr_get(bytes, ANCHORS, i)).collect();
+    let anchor = header.head_fields().unwrap().0[0];
+    let signed = |x: u32| match anchor.width {
+        0 => 0,
+        w => ((x << (32 - w)) as i32 >> (32 - w)) as u32,
+    };
+    let values: Vec<u32> = values.into_iter().map(signed).collect();
+    let wide = Field {
+        width,
+        kind: FieldKind::Signed,
+    };
+    let packed = Packed::pack(&values, [wide; 2]).unwrap();
+    let words = packed.words().clone();
+    let heads = header.layout().unwrap().arrays[HEADS].start;
+    let end = heads + 4 * header.anchor_words() as usize;
+    forge(bytes, Tag::ZIPR, |p| {
+        let mut h = header;
+        h.compact.as_mut().unwrap().anchor_bits = width;
+        let mut out = h.to_bytes();
+        out.extend_from_slice(&p[header.header_len()..heads]);
+        out.extend(words.iter().flat_map(|w| w.to_le_bytes()));
+        out.extend_from_slice(&p[end..]);
+        *p = out;
+    })
+}
+
 /// The symbol of slot `slot` (groups of 32 slots, three words each).
 fn symbol(bytes: &[u8], slot: usize) -> u32 {
     (0..3)
@@ -103,11 +178,12 @@ fn verified_rule(bytes: &[u8]) -> Rule {
     }
 }
 
-/// [V56] `ZIPR` counts and length. (`m < 0x3FFFFFFF` cannot break alone: `m = V`.)
+/// [V56] `ZIPR` counts and length, in the 40-byte header (a file of version 1.12).
+/// (`m < 0x3FFFFFFF` cannot break alone: `m = V`.)
 #[test]
 fn v56_zipr_counts() {
-    // m = m_r = 25, R = 1, n0 = 3, X = 5, I = 8, P = 1, E = 0.
-    let bytes = vector("torus_with_t0.zipper.lrm");
+    // m = m_r = 25, R = 1, n0 = 3, P = 1, E = 0.
+    let bytes = vector("torus_with_t0.zipper-1.12.lrm");
     let at = section_at(&bytes, Tag::ZIPR);
     let field = |f: usize, x: u32| forge(&bytes, Tag::ZIPR, |p| put(p, f, x));
     breaks(&field(0, 24), 56, "ZIPR", at, "section MESH says 25");
@@ -118,7 +194,7 @@ fn v56_zipr_counts() {
     breaks(&field(32, flags & !16), 56, "ZIPR", at, "counts call for");
     // RING_BLOCKS cleared with four rings: the counts then call for the ring-end bits and
     // ranks (two words of 200 vertices each) instead of one word of four 2-bit fields.
-    let four = vector("four_spheres.zipper.lrm");
+    let four = vector("four_spheres.zipper-1.12.lrm");
     let at4 = section_at(&four, Tag::ZIPR);
     let flags = u32::from_le_bytes(payload(&four, Tag::ZIPR)[32..36].try_into().unwrap());
     assert_ne!(flags & 32, 0);
@@ -145,11 +221,11 @@ fn v56_zipr_counts() {
     breaks(&bad, 56, "ZIPR", at, "counts call for");
     let bad = forge(&bytes, Tag::ZIPR, |p| p.truncate(36));
     breaks(&bad, 56, "ZIPR", at, "header");
-    // PACKED_LISTS: the bits of a list's last word past its last field are 0. Five
-    // exceptions of 6 bits (a vertex of 25 and the WART flag) leave the top 2 bits of their
-    // word.
+    // PACKED_LISTS: the bits of a list's last word past its last field are 0. Exceptions
+    // of 6 bits (a vertex of 25 and the WART flag) leave bits of their last word free.
     assert_eq!(zipr_width(&bytes, EXCEPTIONS, 0), 6);
-    assert_eq!(count(16), 5);
+    let used = (6 * count(16)) % 32;
+    assert_ne!(used, 0);
     let last_word = zipr_at(&bytes, RECORDS, 0) - 4;
     let bad = forge(&bytes, Tag::ZIPR, |p| {
         let i = (last_word - at) as usize;
@@ -162,6 +238,86 @@ fn v56_zipr_counts() {
         last_word,
         "EXCEPTIONS: bits past its last field",
     );
+}
+
+/// [V56] in the compact header (version 1.13, FORMAT.md §3.5e.3): the count width, the
+/// head fields' widths, the flags, the counts, the length, and the bits past the head lists'
+/// last fields.
+#[test]
+fn v56_compact_header() {
+    // m = m_r = 25, one block: counts of one byte, head fields of 0 bits.
+    let bytes = vector("torus_with_t0.zipper.lrm");
+    let at = section_at(&bytes, Tag::ZIPR);
+    let header = ZiprHeader::read(&payload(&bytes, Tag::ZIPR));
+    assert_eq!(header.compact.unwrap().count_bytes, 1);
+    let byte = |i: usize, x: u8| forge(&bytes, Tag::ZIPR, |p| p[i] = x);
+    for k in [0, 5, 255] {
+        breaks(&byte(4, k), 56, "ZIPR", at + 4, "counts of");
+    }
+    for i in 5..8 {
+        breaks(
+            &byte(i, 17),
+            56,
+            "ZIPR",
+            at + i as u64,
+            "a head field of 17 bits",
+        );
+    }
+    let (_, flags) = zipr_flags(&bytes);
+    // SHORT_HEADS has no meaning in the compact form; bits 6 to 30 are 0.
+    for bad_flags in [flags | 4, flags | 64, flags | 1 << 30] {
+        breaks(
+            &with_zipr_flags(&bytes, bad_flags),
+            56,
+            "ZIPR",
+            at,
+            "unknown flag bits",
+        );
+    }
+    breaks(&byte(8, 24), 56, "ZIPR", at + 8, "section MESH says 25");
+    breaks(&byte(9, 26), 56, "ZIPR", at + 9, "ring vertices");
+    // Each count made larger than the file's: the layout no longer fits the length.
+    for i in 11..16 {
+        let more = with_header(&bytes, |h| match i {
+            11 => h.t0 += 8,
+            12 => h.exceptions += 8,
+            13 => h.records += 8,
+            14 => h.pairs += 8,
+            _ => h.explicit += 8,
+        });
+        breaks(&more, 56, "ZIPR", at, "counts call for");
+    }
+    for len in [3, 7, 15] {
+        let bad = forge(&bytes, Tag::ZIPR, |p| p.truncate(len));
+        breaks(&bad, 56, "ZIPR", at, "header");
+    }
+    // Counts wider than they need and anchors of 9 and 16 bits are laid out as the header
+    // says: the file opens and verifies.
+    let wide = with_header(&bytes, |h| h.compact.as_mut().unwrap().count_bytes = 4);
+    let spheres = vector("four_spheres.zipper.lrm");
+    for (same, wider) in [
+        (&bytes, wide),
+        (&spheres, with_anchor_bits(&spheres, 9)),
+        (&spheres, with_anchor_bits(&spheres, 16)),
+    ] {
+        assert_ne!(same, &wider);
+        let [a, b] = [same, &wider].map(|x| open_verified(x, &Limits::default()).unwrap());
+        assert_eq!(a.summary().triangles, b.summary().triangles);
+        lrmesh::fuzz_checks::walk_in_range(&b);
+    }
+    // Four blocks: 7-bit anchors (eight fields, 56 bits of two words), 6- and 4-bit counts
+    // (40 bits of two words); a bit set past the last field of either list.
+    let anchored = spheres.clone();
+    let h = ZiprHeader::read(&payload(&anchored, Tag::ZIPR));
+    let c = h.compact.unwrap();
+    assert_eq!((c.anchor_bits, c.count_bits), (7, [6, 4]));
+    let at4 = section_at(&anchored, Tag::ZIPR);
+    let heads = h.layout().unwrap().arrays[HEADS];
+    for (end, words) in [(heads.start + 8, "anchor"), (heads.end(), "count")] {
+        let bad = forge(&anchored, Tag::ZIPR, |p| p[end - 1] |= 0x80);
+        let message = format!("HEADS: bits past the last {words} field");
+        breaks(&bad, 56, "ZIPR", at4 + end as u64 - 4, &message);
+    }
 }
 
 /// [V57] `ZIPR` rings satisfy [V16], the bit vectors only with several rings; with
@@ -221,9 +377,18 @@ fn v57_zipr_rings() {
 fn v58_symbols_and_heads() {
     let bytes = vector("torus_with_t0.zipper.lrm");
     // 25 ring vertices: 50 slots, two groups of three words; one block, whose head is two
-    // words (SHORT_HEADS): the anchors, then the counts before it (16 bits each).
-    field_breaks(&bytes, HEADS, 1, 1, 58, "exceptions");
-    field_breaks(&bytes, HEADS, 1, 1 << 16, 58, "records");
+    // words in the version 1.12 file (SHORT_HEADS): the anchors, then the counts before it
+    // (16 bits each).
+    let old12 = vector("torus_with_t0.zipper-1.12.lrm");
+    field_breaks(&old12, HEADS, 1, 1, 58, "exceptions");
+    field_breaks(&old12, HEADS, 1, 1 << 16, 58, "records");
+    // Four blocks in the compact form: a count of block 2 off by one.
+    let four = vector("four_spheres.zipper.lrm");
+    for k in [4, 5] {
+        let x = zipr_get(&four, HEADS, k);
+        let bad = zipr_set(&four, HEADS, k, x ^ 1);
+        breaks(&bad, 58, "ZIPR", zipr_at(&four, HEADS, 4), "block 2 counts");
+    }
     // A symbol past the last slot.
     let w = zipr_get(&bytes, PLANES, 3);
     let bad = zipr_set(&bytes, PLANES, 3, w | 1 << 20);
@@ -255,10 +420,18 @@ fn v58_symbols_and_heads() {
     for state_field in [1, 1 << 4 | 12, 1 << 4 | 3, 3 << 4 | 1] {
         field_breaks(&bytes, RECORDS, 1, state_field, 58, "no valid opposite");
     }
-    // A delta tip out of range: the left anchor's offset from vertex 0 made negative.
-    let bad = zipr_set(&bytes, HEADS, 0, 0x8000);
-    if symbol(&bytes, 0) < 4 {
-        breaks(&bad, 58, "ZIPR", zipr_at(&bytes, PLANES, 0), "has tip");
+    // A delta tip out of range: the left anchor's offset from vertex 0 made negative (in
+    // the 1.12 file, and with the compact vector's anchors rewritten 16 bits wide).
+    for file in [old12.clone(), with_anchor_bits(&bytes, 16)] {
+        let index = if ZiprHeader::is_compact(&payload(&file, Tag::ZIPR)) {
+            ANCHORS
+        } else {
+            HEADS
+        };
+        let bad = zipr_set(&file, index, 0, 0x8000);
+        if symbol(&file, 0) < 4 {
+            breaks(&bad, 58, "ZIPR", zipr_at(&file, PLANES, 0), "has tip");
+        }
     }
     // An exception slot turned into a delta: its word is left over, or a tip breaks.
     let exception_bit = (0..50).find(|&b| symbol(&bytes, b) == 6).unwrap();
@@ -358,9 +531,9 @@ fn wart_deltas_cleared() {
         "bent_normals",
     ] {
         let bytes = vector(&format!("{name}.zipper.lrm"));
-        let flags = get(&payload(&bytes, Tag::ZIPR), 32);
+        let (_, flags) = zipr_flags(&bytes);
         assert_eq!(flags & 2, 2, "{name}: the vector sets WART_DELTAS");
-        let bad = forge(&bytes, Tag::ZIPR, |p| put(p, 32, flags & !2));
+        let bad = with_zipr_flags(&bytes, flags & !2);
         let view = open(&bad, &Limits::default()).unwrap();
         lrmesh::fuzz_checks::walk_in_range(&view);
         assert!(
@@ -370,14 +543,14 @@ fn wart_deltas_cleared() {
     }
 }
 
-/// [V58] with superblocks: a mesh of more than 256 blocks (16,384 ring vertices) has a
-/// `SUPER` entry; a count there that is not the exceptions (or records) before its
-/// superblock breaks the first block's sum, and moving the difference into that block's
-/// offsets keeps the file valid (only the sums are the rule).
+/// [V58] with superblocks: in the compact form a mesh of more than 16 blocks (1,024 ring
+/// vertices) has `SUPER` entries; a count there that is not the exceptions (or records)
+/// before its superblock breaks the first block's sum, and moving the difference into that
+/// superblock's offsets keeps the file valid (only the sums are the rule).
 #[test]
 fn v58_superblock_counts() {
-    const SUPER: usize = 12;
-    let mesh = lrmesh::generate::irregular_torus(40_000, 7);
+    const PER_SUPER: usize = 16;
+    let mesh = lrmesh::generate::irregular_torus(6_000, 7);
     let options = lrmesh::write::EncodeOptions {
         connectivity: lrmesh::write::Connectivity::Zipper,
         ..Default::default()
@@ -385,54 +558,65 @@ fn v58_superblock_counts() {
     let bytes = lrmesh::write::encode(&mesh, &options).unwrap();
     open_verified(&bytes, &Limits::default()).unwrap();
     let header = ZiprHeader::read(&payload(&bytes, Tag::ZIPR));
-    assert!(header.m_r > 1 << 14, "{} ring vertices", header.m_r);
-    let (exceptions, records) = (zipr_get(&bytes, SUPER, 0), zipr_get(&bytes, SUPER, 1));
-    assert!(exceptions > 0 && records > 0, "{exceptions} {records}");
-    // Block 256 starts superblock 1: its head's counts are offsets 0 from SUPER.
-    let first = 256;
-    assert_eq!(zipr_get(&bytes, HEADS, 2 * first + 1), 0);
-    let bad = zipr_set(&bytes, SUPER, 0, exceptions + 1);
-    breaks(
-        &bad,
-        58,
-        "ZIPR",
-        zipr_at(&bytes, HEADS, 2 * first + 1),
-        "block 256 counts",
-    );
-    let bad = zipr_set(&bytes, SUPER, 1, records - 1);
-    breaks(
-        &bad,
-        58,
-        "ZIPR",
-        zipr_at(&bytes, HEADS, 2 * first + 1),
-        "records",
-    );
-    let moved = zipr_set(&bytes, SUPER, 0, exceptions - 1);
     let blocks = (header.m_r as usize).div_ceil(64);
-    let moved = (first..blocks.min(first + 256)).fold(moved, |b, block| {
-        let w = zipr_get(&b, HEADS, 2 * block + 1);
-        zipr_set(&b, HEADS, 2 * block + 1, w + 1)
+    assert!(blocks > 2 * PER_SUPER, "{blocks} blocks");
+    let count_bits = header.compact.unwrap().count_bits;
+    // A superblock whose exception offsets all have room for one more.
+    let s = (1..blocks / PER_SUPER)
+        .find(|&s| {
+            (s * PER_SUPER..(s + 1) * PER_SUPER)
+                .all(|b| zipr_get(&bytes, HEADS, 2 * b) + 1 < 1 << count_bits[0])
+        })
+        .expect("a superblock with room");
+    let (exceptions, records) = (
+        zipr_get(&bytes, SUPER, 2 * s - 2),
+        zipr_get(&bytes, SUPER, 2 * s - 1),
+    );
+    assert!(exceptions > 0 && records > 0, "{exceptions} {records}");
+    // Its first block's counts are offsets 0 from SUPER.
+    let first = s * PER_SUPER;
+    assert_eq!(zipr_get(&bytes, HEADS, 2 * first), 0);
+    assert_eq!(zipr_get(&bytes, HEADS, 2 * first + 1), 0);
+    let at = zipr_at(&bytes, HEADS, 2 * first);
+    let bad = zipr_set(&bytes, SUPER, 2 * s - 2, exceptions + 1);
+    breaks(&bad, 58, "ZIPR", at, &format!("block {first} counts"));
+    let bad = zipr_set(&bytes, SUPER, 2 * s - 1, records - 1);
+    breaks(&bad, 58, "ZIPR", at, "records");
+    let moved = zipr_set(&bytes, SUPER, 2 * s - 2, exceptions - 1);
+    let moved = (first..blocks.min(first + PER_SUPER)).fold(moved, |b, block| {
+        let w = zipr_get(&b, HEADS, 2 * block);
+        zipr_set(&b, HEADS, 2 * block, w + 1)
     });
     open_verified(&moved, &Limits::default()).unwrap();
 }
 
-/// A file with `SHORT_HEADS` cleared is laid out with four-word heads, one with
-/// `PACKED_LISTS` cleared with 32-bit lists: either way its length no longer fits its counts.
+/// A file with `SHORT_HEADS` cleared is laid out with four-word heads (version 1.12), one
+/// with `PACKED_LISTS` cleared with 32-bit lists, a compact one with `SHORT_HEADS` set is
+/// refused: either way its length no longer fits its counts, or the flag has no meaning. A
+/// compact file with the compact bit cleared reads its flags word as `m`.
 #[test]
 fn layout_flags_cleared() {
+    let old = vector("torus_with_t0.zipper-1.12.lrm");
     let bytes = vector("torus_with_t0.zipper.lrm");
-    let flags = get(&payload(&bytes, Tag::ZIPR), 32);
-    for (flag, name) in [(4, "SHORT_HEADS"), (8, "PACKED_LISTS")] {
+    for (file, flag, name) in [
+        (&old, 4, "SHORT_HEADS"),
+        (&old, 8, "PACKED_LISTS"),
+        (&bytes, 8, "PACKED_LISTS"),
+    ] {
+        let (_, flags) = zipr_flags(file);
         assert_eq!(flags & flag, flag, "the vector sets {name}");
-        let bad = forge(&bytes, Tag::ZIPR, |p| put(p, 32, flags & !flag));
+        let bad = with_zipr_flags(file, flags & !flag);
         breaks(
             &bad,
             56,
             "ZIPR",
-            section_at(&bytes, Tag::ZIPR),
+            section_at(file, Tag::ZIPR),
             "counts call for",
         );
     }
+    let (_, flags) = zipr_flags(&bytes);
+    let bad = forge(&bytes, Tag::ZIPR, |p| put(p, 0, flags));
+    assert_eq!(format_error(&bad).rule, Rule(56));
 }
 
 /// The fuzz targets `container_forged` and `operators` start from Zipper containers too
@@ -471,7 +655,10 @@ fn zero_width_lists_of_any_length() {
     let header = ZiprHeader::read(&payload(&bytes, Tag::ZIPR));
     assert_eq!((header.m_r, header.t0), (0, 0));
     for pairs in [1, 0x8000_0000, u32::MAX] {
-        let bad = forge(&bytes, Tag::ZIPR, |p| put(p, 24, pairs));
+        let bad = with_header(&bytes, |h| {
+            h.compact.as_mut().unwrap().count_bytes = 4;
+            h.pairs = pairs;
+        });
         assert_eq!(format_error(&bad).rule, Rule(58), "{pairs} pairs");
     }
 }
@@ -511,7 +698,7 @@ fn v19_jump_to_a_redundant_slot() {
     let slots = 2 * ZiprHeader::read(&payload(&bytes, Tag::ZIPR)).m_r as usize;
     assert!(slots > 3 * 128, "several blocks");
     let mut tested = 0;
-    for t in [4, 60, 62, 126, 254, slots - 2] {
+    for t in [4, 10, 20, 60, 62, 94, 126, 254, 382, slots - 2, slots - 4] {
         if let Some(bad) = jump_to_a_redundant_slot(&bytes, t, slots) {
             assert_eq!(format_error(&bad).rule, Rule(19), "slot {t}");
             tested += 1;

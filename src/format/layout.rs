@@ -424,11 +424,30 @@ pub struct ZiprHeader {
     /// `E`: explicit T0 opposites.
     pub explicit: u32,
     /// Flags: [`LR_BOUNDARIES_ON_RING`], [`ZIPPER_WART_DELTAS`], [`ZIPPER_SHORT_HEADS`],
-    /// [`ZIPPER_PACKED_LISTS`], [`ZIPPER_INNER_RING_STARTS`], [`ZIPPER_RING_BLOCKS`].
+    /// [`ZIPPER_PACKED_LISTS`], [`ZIPPER_INNER_RING_STARTS`], [`ZIPPER_RING_BLOCKS`] (in the
+    /// compact form, bits 0–30 of its first word).
     pub flags: u32,
-    /// Reserved, 0.
+    /// Reserved, 0 (the 40-byte header only).
     pub reserved: u32,
+    /// The compact form (version 1.13, §3.5e.3); `None` for the 40-byte header.
+    pub compact: Option<CompactZipr>,
 }
+
+/// What a compact `ZIPR` header (version 1.13, FORMAT.md §3.5e.3) holds besides the counts
+/// and flags: the counts' byte width and the compact heads' field widths.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct CompactZipr {
+    /// `k`: bytes per count, 1 to 4.
+    pub count_bytes: u8,
+    /// `w_a`: bits of an anchor offset (signed), 0 to 16.
+    pub anchor_bits: u8,
+    /// `w_x`, `w_i`: bits of a head's exception and record counts, 0 to 16.
+    pub count_bits: [u8; 2],
+}
+
+/// Bit 31 of a `ZIPR` section's first word: the compact form (version 1.13). The 40-byte
+/// header's first word is `m`, below 2^30.
+pub const ZIPPER_COMPACT: u32 = 1 << 31;
 
 /// `ZIPR` flag (FORMAT.md §3.5e, version 1.8): a delta slot followed on its side by a
 /// canonical T2 is a wart. That slot can hold nothing else (the T2 covers its ring edge on
@@ -478,8 +497,42 @@ impl ZiprHeader {
         "SUPER",
     ];
 
-    /// The header at the start of `b` (at least [`ZiprHeader::LEN`] bytes).
+    /// Whether the section `b` (at least 4 bytes) begins with a compact header.
+    pub fn is_compact(b: &[u8]) -> bool {
+        le_u32(b, 0) & ZIPPER_COMPACT != 0
+    }
+
+    /// The header at the start of `b`: at least [`ZiprHeader::LEN`] bytes, or in the compact
+    /// form ([`ZiprHeader::is_compact`]) 8 bytes with a count width `k` of 1 to 4 and then
+    /// `8k` bytes.
     pub fn read(b: &[u8]) -> ZiprHeader {
+        if Self::is_compact(b) {
+            let k = b[4];
+            let count = |i: usize| {
+                let at = 8 + i * k as usize;
+                b[at..at + k as usize]
+                    .iter()
+                    .rev()
+                    .fold(0u32, |x, &byte| x << 8 | byte as u32)
+            };
+            return ZiprHeader {
+                m: count(0),
+                m_r: count(1),
+                rings: count(2),
+                t0: count(3),
+                exceptions: count(4),
+                records: count(5),
+                pairs: count(6),
+                explicit: count(7),
+                flags: le_u32(b, 0) & !ZIPPER_COMPACT,
+                reserved: 0,
+                compact: Some(CompactZipr {
+                    count_bytes: k,
+                    anchor_bits: b[5],
+                    count_bits: [b[6], b[7]],
+                }),
+            };
+        }
         let [m, m_r, rings, t0, exceptions, records, pairs, explicit, flags, reserved] =
             read_fields(b);
         ZiprHeader {
@@ -493,28 +546,93 @@ impl ZiprHeader {
             explicit,
             flags,
             reserved,
+            compact: None,
+        }
+    }
+
+    /// The eight counts, in header order.
+    pub fn counts(&self) -> [u32; 8] {
+        [
+            self.m,
+            self.m_r,
+            self.rings,
+            self.t0,
+            self.exceptions,
+            self.records,
+            self.pairs,
+            self.explicit,
+        ]
+    }
+
+    /// Where count `i` (in [`ZiprHeader::counts`] order) lies in the header.
+    pub fn count_offset(&self, i: usize) -> usize {
+        match self.compact {
+            Some(c) => 8 + i * c.count_bytes as usize,
+            None => 4 * i,
+        }
+    }
+
+    /// Bytes of the header: 40, or `8 + 8k` in the compact form.
+    pub fn header_len(&self) -> usize {
+        match self.compact {
+            Some(c) => crate::lr::zipper::compact_header_len(c.count_bytes),
+            None => Self::LEN,
         }
     }
 
     /// The header's bytes.
     pub fn to_bytes(&self) -> Vec<u8> {
-        let mut out = Vec::with_capacity(Self::LEN);
-        write_fields(
-            &mut out,
-            &[
-                self.m,
-                self.m_r,
-                self.rings,
-                self.t0,
-                self.exceptions,
-                self.records,
-                self.pairs,
-                self.explicit,
-                self.flags,
-                self.reserved,
-            ],
-        );
+        let mut out = Vec::with_capacity(self.header_len());
+        match self.compact {
+            Some(c) => {
+                write_fields(&mut out, &[self.flags | ZIPPER_COMPACT]);
+                out.extend([
+                    c.count_bytes,
+                    c.anchor_bits,
+                    c.count_bits[0],
+                    c.count_bits[1],
+                ]);
+                for x in self.counts() {
+                    out.extend_from_slice(&x.to_le_bytes()[..c.count_bytes as usize]);
+                }
+            }
+            None => {
+                write_fields(&mut out, &self.counts());
+                write_fields(&mut out, &[self.flags, self.reserved]);
+            }
+        }
         out
+    }
+
+    /// In the compact form, the fields of the two head lists: the anchors' (signed, both
+    /// sides alike) and the counts' (exceptions, records).
+    pub fn head_fields(
+        &self,
+    ) -> Option<([crate::lr::zipper::Field; 2], [crate::lr::zipper::Field; 2])> {
+        use crate::lr::zipper::{Field, FieldKind};
+        let c = self.compact?;
+        let anchor = Field {
+            width: c.anchor_bits,
+            kind: FieldKind::Signed,
+        };
+        let count = |width| Field {
+            width,
+            kind: FieldKind::Plain,
+        };
+        Some(([anchor; 2], c.count_bits.map(count)))
+    }
+
+    /// Blocks of 64 ring vertices.
+    pub fn blocks(&self) -> u64 {
+        (self.m_r as u64).div_ceil(1 << crate::lr::zipper::BLOCK_SHIFT)
+    }
+
+    /// In the compact form, the words of the anchors' list (the first part of `HEADS`).
+    pub fn anchor_words(&self) -> u64 {
+        match self.head_fields() {
+            Some((anchor, _)) => crate::lr::zipper::packed_words(2 * self.blocks(), anchor),
+            None => 0,
+        }
     }
 
     /// Whether the ring-end bits and ranks are stored (only with several rings).
@@ -575,12 +693,21 @@ impl ZiprHeader {
             packed_words, plane_array_words, HEAD_WORDS, SHORT_HEAD_WORDS, SUPER_SHIFT,
         };
         let short = self.flags & ZIPPER_SHORT_HEADS != 0;
+        let heads = match self.head_fields() {
+            Some((_, counts)) => self.anchor_words() + packed_words(2 * self.blocks(), counts),
+            None => (if short { SHORT_HEAD_WORDS } else { HEAD_WORDS }) as u64 * self.blocks(),
+        };
+        let superblocks = |shift: u32| 2 * self.blocks().div_ceil(1 << shift).saturating_sub(1);
+        let super_words = match (self.compact, short) {
+            (Some(_), _) => superblocks(crate::lr::zipper::COMPACT_SUPER_SHIFT),
+            (None, true) => superblocks(SUPER_SHIFT),
+            (None, false) => 0,
+        };
         let bits = if self.has_ring_bits() {
             (self.m_r as u64).div_ceil(32)
         } else {
             0
         };
-        let blocks = (self.m_r as u64).div_ceil(1 << crate::lr::zipper::BLOCK_SHIFT);
         let lists = self.list_lengths()?;
         let fields = self.list_fields();
         let list_words: [u64; 7] = std::array::from_fn(|i| packed_words(lists[i], fields[i]));
@@ -596,7 +723,7 @@ impl ZiprHeader {
             },
             bits,
             plane_array_words(self.m_r) as u64,
-            if short { SHORT_HEAD_WORDS } else { HEAD_WORDS } as u64 * blocks,
+            heads,
             list_words[0],
             list_words[1],
             list_words[2],
@@ -604,17 +731,14 @@ impl ZiprHeader {
             list_words[4],
             list_words[5],
             list_words[6],
-            match short {
-                true => 2 * blocks.div_ceil(1 << SUPER_SHIFT).saturating_sub(1),
-                false => 0,
-            },
+            super_words,
         ];
         let arrays: Vec<_> = Self::ARRAYS
             .iter()
             .zip(counts)
             .map(|(&name, count)| (name, count, 4))
             .collect();
-        Layout::new(Self::LEN, &arrays)
+        Layout::new(self.header_len(), &arrays)
     }
 }
 

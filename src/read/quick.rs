@@ -7,7 +7,7 @@ use super::fields::Fields;
 use super::summary::{self, ContainerSummary, PositionsSummary};
 use super::{counts, positions, Limits, Sections};
 use crate::error::{Result, Rule};
-use crate::format::layout::{LrbeHeader, LrtbHeader, StrpHeader, ZiprHeader};
+use crate::format::layout::{LrbeHeader, LrtbHeader, StrpHeader};
 use crate::format::{Kind, PositionEncoding, Tag};
 
 /// The sections read by their headers alone: neither their checksums nor their data.
@@ -145,9 +145,8 @@ fn rings(sections: &Sections, kind: Kind, m: u32) -> Result<Option<Rings>> {
             })
         }
         Kind::ZIPPER => {
-            let f = header_fields(sections, Tag::ZIPR, ZiprHeader::LEN, Rule(56))?;
-            let h = ZiprHeader::read(f.bytes());
-            f.expect_vertices(0, h.m, m, Rule(56))?;
+            let f = Fields::new(sections.required(Tag::ZIPR)?);
+            let h = super::zipper::zipr_header(&f, m)?;
             f.expect_len(h.layout().map(|l| l.len), Rule(56))?;
             Some(Rings {
                 m_r: h.m_r,

@@ -24,6 +24,9 @@ use crate::words::{LeUnits, LeWords, Stored, Words};
 /// Its operators panic when given a corner that is not a corner of the mesh (see
 /// [`Connectivity::is_corner`]), rather than answer something made up; vertex and triangle
 /// ids must be below the bounds.
+// The Zipper's tables are the largest variant (twenty slices and lists): a container holds
+// one view, and a box would put a pointer between every operator and its tables.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone)]
 pub enum Connectivity<'a> {
     /// Standard LR tables, answering the corner operators on the buffer.

@@ -15,10 +15,10 @@ use crate::format::layout::{
 use crate::format::Tag;
 use crate::ids::Corner;
 use crate::lr::zipper::{
-    first_bit, plane_array_words, ring_block_field, Field, Packed, BLOCK_SHIFT, DELTAS, EXCEPTION,
-    EXPLICIT, EXPLICIT_SHIFT, HEAD_WORDS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PLANE_WORDS, PREVIOUS,
-    RECORD_WORDS, SHORT_HEAD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE,
-    STORES_SECOND,
+    compact_header_len, first_bit, plane_array_words, ring_block_field, Field, Packed, BLOCK_SHIFT,
+    DELTAS, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT, HEAD_WORDS, IRREGULAR_SLOT, MAX_HEAD_WIDTH,
+    NEXT_NEXT_OR_NULL, PLANE_WORDS, PREVIOUS, RECORD_WORDS, SHORT_HEAD_WORDS, STATE_SHIFT,
+    STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
 };
 use crate::lr::{LrLayout, ZipperTables, NULL, VALUE, WART};
 use crate::words::{LeWords, Words};
@@ -44,19 +44,23 @@ pub(super) fn zipper_tables<'a>(
 ) -> Result<(ZipperTables<LeWords<'a>>, u64)> {
     let f = Fields::new(sections.required(Tag::ZIPR)?);
     let b = f.bytes();
-    // [V56] counts and length.
-    f.expect_at_least(ZiprHeader::LEN, Rule(56))?;
-    let h = ZiprHeader::read(b);
+    let h = zipr_header(&f, m)?;
+    let count_at = |i: usize| h.count_offset(i);
+    let compact = h.compact.is_some();
     let (m_r, rings, n0) = (h.m_r, h.rings, h.t0);
-    f.expect_vertices(0, h.m, m, Rule(56))?;
+    // SHORT_HEADS has no meaning in the compact form, whose heads are bit fields.
     let known = LR_BOUNDARIES_ON_RING
         | ZIPPER_WART_DELTAS
-        | ZIPPER_SHORT_HEADS
+        | if compact { 0 } else { ZIPPER_SHORT_HEADS }
         | ZIPPER_PACKED_LISTS
         | ZIPPER_INNER_RING_STARTS
         | ZIPPER_RING_BLOCKS;
     if h.flags & !known != 0 || h.reserved != 0 {
-        return Err(f.err(32, Rule(56), "unknown flag bits or reserved bits are set"));
+        return Err(f.err(
+            if compact { 0 } else { 32 },
+            Rule(56),
+            "unknown flag bits or reserved bits are set",
+        ));
     }
     if m >= NULL {
         return Err(f.err(
@@ -67,13 +71,13 @@ pub(super) fn zipper_tables<'a>(
     }
     if m_r > m || (m_r == 0) != (rings == 0) || rings as u64 > m_r as u64 / 4 {
         return Err(f.err(
-            4,
+            count_at(1),
             Rule(56),
             format!("{m_r} ring vertices in {rings} rings for {m} vertices (rings have at least 4 vertices)"),
         ));
     }
     if 8 * m_r as u64 + 4 * n0 as u64 >= NONE as u64 {
-        return Err(f.err(12, Rule(56), "corner ids exceed 32 bits"));
+        return Err(f.err(count_at(3), Rule(56), "corner ids exceed 32 bits"));
     }
     let layout = h.layout();
     f.expect_len(layout.as_ref().map(|l| l.len), Rule(56))?;
@@ -90,7 +94,11 @@ pub(super) fn zipper_tables<'a>(
         .into_iter()
         .collect::<Result<Vec<_>, _>>()
     else {
-        return Err(f.err(16, Rule(56), "list lengths exceed the address space"));
+        return Err(f.err(
+            count_at(4),
+            Rule(56),
+            "list lengths exceed the address space",
+        ));
     };
     let fields = h.list_fields();
     let list = |i: usize, words: LeWords<'a>| Packed::new(words, lengths[i], fields[i]);
@@ -103,10 +111,43 @@ pub(super) fn zipper_tables<'a>(
         list(5, t0_explicit),
         list(6, c),
     ];
-    // Where element `i` of an array starts (an error names its byte).
-    let offset_of = |array: usize, i: usize| match array {
-        EXCEPTIONS..=C => {
+    // In the compact form, HEADS is two lists: the anchors' and the counts'.
+    let anchor_bytes = 4 * h.anchor_words() as usize;
+    let (anchors, head_counts, heads) = match h.head_fields() {
+        Some((anchor, counts)) => {
+            let (a, c) = heads.0.split_at(anchor_bytes);
+            let blocks = 2 * h.blocks() as usize;
+            let anchors = Packed::new(LeWords(a), blocks, anchor);
+            let head_counts = Packed::new(LeWords(c), blocks, counts);
+            for (k, list) in [&anchors, &head_counts].into_iter().enumerate() {
+                if !list.padding_is_zero() {
+                    let end = [starts[HEADS] + anchor_bytes, arrays[HEADS].end()][k];
+                    return Err(f.err(
+                        end - 4,
+                        Rule(56),
+                        format!(
+                            "HEADS: bits past the last {} field are set",
+                            ["anchor", "count"][k]
+                        ),
+                    ));
+                }
+            }
+            (anchors, head_counts, LeWords(&[]))
+        }
+        None => {
+            let none = || Packed::new(LeWords(&[]), 0, [Field::WORD; 2]);
+            (none(), none(), heads)
+        }
+    };
+    let count_fields = h.head_fields().map(|(_, counts)| counts);
+    // Where element `i` of an array starts (an error names its byte); in the compact form,
+    // HEADS' element `i` is the counts' list's.
+    let offset_of = |array: usize, i: usize| match (array, count_fields) {
+        (EXCEPTIONS..=C, _) => {
             starts[array] + (first_bit(fields[array - EXCEPTIONS], i as u64) / 8) as usize
+        }
+        (HEADS, Some(counts)) => {
+            starts[HEADS] + anchor_bytes + (first_bit(counts, i as u64) / 8) as usize
         }
         _ => starts[array] + 4 * i,
     };
@@ -189,6 +230,8 @@ pub(super) fn zipper_tables<'a>(
         ring_blocks,
         planes,
         heads,
+        anchors,
+        head_counts,
         exceptions,
         records,
         pairs,
@@ -202,6 +245,7 @@ pub(super) fn zipper_tables<'a>(
         boundaries_on_ring: false,
         wart_deltas: h.flags & ZIPPER_WART_DELTAS != 0,
         short_heads: h.flags & ZIPPER_SHORT_HEADS != 0,
+        compact,
         packed_lists: h.flags & ZIPPER_PACKED_LISTS != 0,
         inner_ring_starts: h.inner_ring_starts(),
         ring_blocks_flag: h.flags & ZIPPER_RING_BLOCKS != 0,
@@ -335,6 +379,37 @@ pub(super) fn zipper_tables<'a>(
     Ok((tables, slots.triangles + n0 as u64))
 }
 
+/// [V56] on the header: its length, the compact form's count and field widths (version
+/// 1.13), and `m`.
+pub(super) fn zipr_header(f: &Fields, m: u32) -> Result<ZiprHeader> {
+    let b = f.bytes();
+    f.expect_at_least(4, Rule(56))?;
+    if ZiprHeader::is_compact(b) {
+        f.expect_at_least(8, Rule(56))?;
+        let k = b[4];
+        if !(1..=4).contains(&k) {
+            return Err(f.err(
+                4,
+                Rule(56),
+                format!("counts of {k} bytes (the compact header's are 1 to 4)"),
+            ));
+        }
+        if let Some(i) = (5..8).find(|&i| b[i] > MAX_HEAD_WIDTH) {
+            return Err(f.err(
+                i,
+                Rule(56),
+                format!("a head field of {} bits (at most {MAX_HEAD_WIDTH})", b[i]),
+            ));
+        }
+        f.expect_at_least(compact_header_len(k), Rule(56))?;
+    } else {
+        f.expect_at_least(ZiprHeader::LEN, Rule(56))?;
+    }
+    let h = ZiprHeader::read(b);
+    f.expect_vertices(h.count_offset(0), h.m, m, Rule(56))?;
+    Ok(h)
+}
+
 /// [V58]: each block's head counts the exceptions and records before it; symbols of slots
 /// past the last ring vertex are 0; exception and record words have bit 31 clear and a tip
 /// below `m`; record word 1 says what it stores as FORMAT.md §3.5e allows, the pairs used
@@ -354,14 +429,15 @@ fn check_slots(
     for block in 0..blocks {
         let before = [0, 1].map(|k| t.before_block(block, k));
         if before != [exceptions, records] {
-            let head_words = if t.short_heads {
-                SHORT_HEAD_WORDS
-            } else {
-                HEAD_WORDS
+            // The head's count word, or in the compact form its exception count's field.
+            let index = match (t.compact, t.short_heads) {
+                (true, _) => 2 * block,
+                (false, true) => SHORT_HEAD_WORDS * block + 1,
+                (false, false) => HEAD_WORDS * block + 2,
             };
             return Err(word_err(
                 HEADS,
-                head_words * block + if t.short_heads { 1 } else { 2 },
+                index,
                 Rule(58),
                 format!(
                     "block {block} counts {} exceptions and {} records before it, not {exceptions} and {records}",

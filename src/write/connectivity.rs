@@ -5,12 +5,13 @@ use crate::corner_table::CornerTable;
 use crate::edgebreaker;
 use crate::error::Result;
 use crate::format::layout::{
-    write_fields, Layout, LrbeHeader, LrtbHeader, StrpHeader, ZiprHeader, LRBE_TIP_BASES,
-    LR_BOUNDARIES_ON_RING, ZIPPER_INNER_RING_STARTS, ZIPPER_PACKED_LISTS, ZIPPER_RING_BLOCKS,
-    ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
+    write_fields, CompactZipr, Layout, LrbeHeader, LrtbHeader, StrpHeader, ZiprHeader,
+    LRBE_TIP_BASES, LR_BOUNDARIES_ON_RING, ZIPPER_INNER_RING_STARTS, ZIPPER_PACKED_LISTS,
+    ZIPPER_RING_BLOCKS, ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
 };
 use crate::format::{Kind, Tag};
 use crate::ids::{Triangle, Vertex};
+use crate::lr::zipper::count_bytes;
 use crate::lr::{CompactLr, Lr, LrLayout, Zipper};
 use crate::ops::CornerOps;
 use crate::strips::Cts;
@@ -213,6 +214,11 @@ pub(super) fn zipper_section(z: &Zipper, shape: bool) -> Encoded {
     let header = zipper_header(z);
     let layout = header.layout().expect("a built Zipper fits its layout");
     let mut p = header.to_bytes();
+    // In the compact form, HEADS is the anchors' list and then the counts'.
+    let heads: Vec<u32> = match t.compact {
+        true => [t.anchors.words.as_slice(), t.head_counts.words.as_slice()].concat(),
+        false => t.heads.clone(),
+    };
     write_arrays(
         &mut p,
         &layout,
@@ -225,7 +231,7 @@ pub(super) fn zipper_section(z: &Zipper, shape: bool) -> Encoded {
             },
             &t.ring_rank,
             &t.planes,
-            &t.heads,
+            &heads,
             &t.exceptions.words,
             &t.records.words,
             &t.pairs.words,
@@ -264,7 +270,11 @@ pub(crate) fn zipper_header(z: &Zipper) -> ZiprHeader {
         explicit: t.explicit_count() as u32,
         flags: boundary_flag(t)
             | if t.wart_deltas { ZIPPER_WART_DELTAS } else { 0 }
-            | if t.short_heads { ZIPPER_SHORT_HEADS } else { 0 }
+            | if t.short_heads && !t.compact {
+                ZIPPER_SHORT_HEADS
+            } else {
+                0
+            }
             | if t.packed_lists {
                 ZIPPER_PACKED_LISTS
             } else {
@@ -281,6 +291,11 @@ pub(crate) fn zipper_header(z: &Zipper) -> ZiprHeader {
                 0
             },
         reserved: 0,
+        compact: t.compact.then(|| CompactZipr {
+            count_bytes: count_bytes(&t.header_counts()),
+            anchor_bits: t.anchors.field_width(),
+            count_bits: t.head_counts.fields().map(|f| f.width),
+        }),
     }
 }
 

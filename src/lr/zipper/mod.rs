@@ -78,6 +78,23 @@ pub const SHORT_HEAD_WORDS: usize = 2;
 /// Blocks per superblock: `block >> SUPER_SHIFT` is the superblock of `block`, whose
 /// exceptions and records before it the `SUPER` array holds (from superblock 1 on).
 pub const SUPER_SHIFT: u32 = 8;
+/// Blocks per superblock in the compact form (version 1.13, FORMAT.md §3.5e.3): the heads'
+/// counts are offsets from their superblock's, in as few bits as the largest needs.
+pub const COMPACT_SUPER_SHIFT: u32 = 4;
+/// The widest field of a compact head (anchor offsets and counts), in bits.
+pub const MAX_HEAD_WIDTH: u8 = 16;
+
+/// Bytes per count in a compact `ZIPR` header: the fewest that hold the largest of `counts`
+/// (1 to 4).
+pub fn count_bytes(counts: &[u32]) -> u8 {
+    let largest = counts.iter().copied().max().unwrap_or(0);
+    (32 - largest.leading_zeros()).div_ceil(8).max(1) as u8
+}
+
+/// Bytes of a compact `ZIPR` header whose eight counts take `k` bytes each.
+pub fn compact_header_len(k: u8) -> usize {
+    8 + 8 * k as usize
+}
 /// Words per record: WART flag and tip, then which opposites are stored and the stored one.
 pub const RECORD_WORDS: usize = 2;
 /// Record word 1, bits 30–31: no opposite stored (both inferred).

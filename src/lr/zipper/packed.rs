@@ -21,6 +21,9 @@ pub enum FieldKind {
     /// A record's second word: its state in the field's top two bits (the word's bits
     /// 30–31), its value below.
     Stated,
+    /// A two's complement number of the field's width, as a 32-bit two's complement word
+    /// (a compact head's anchor offset, FORMAT.md §3.5e.3); width 0 is the value 0.
+    Signed,
 }
 
 /// One field: its width in bits (0 to 32) and kind.
@@ -53,6 +56,12 @@ impl Field {
                 let top = self.width as u32 - 2;
                 (f & low_bits(top)) | (f >> top) << 30
             }
+            FieldKind::Signed => {
+                let shift = 32u32.saturating_sub(self.width as u32);
+                (((f as u64) << shift) as u32 as i32)
+                    .checked_shr(shift)
+                    .unwrap_or(0) as u32
+            }
         }
     }
 
@@ -74,6 +83,13 @@ impl Field {
                     return None;
                 }
                 (word & low_bits(30)) | (word >> 30) << top
+            }
+            FieldKind::Signed => {
+                let f = word & low_bits(self.width as u32);
+                if self.decode(f) != word {
+                    return None;
+                }
+                f
             }
         };
         (f <= low_bits(self.width as u32)).then_some(f)
@@ -183,6 +199,31 @@ impl<W: Words> Packed<W> {
     pub fn padding_is_zero(&self) -> bool {
         let used = (self.bit(self.len) % 32) as u32;
         used == 0 || self.words.at(self.words.count() - 1) >> used == 0
+    }
+
+    /// The stored words.
+    pub fn words(&self) -> &W {
+        &self.words
+    }
+
+    /// The width of the even elements' field.
+    pub fn field_width(&self) -> u8 {
+        self.fields[0].width
+    }
+
+    /// The fields of even and odd elements.
+    pub fn fields(&self) -> [Field; 2] {
+        self.fields
+    }
+
+    /// Elements.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether the list has no element.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
     }
 
     /// The words every element stands for, in order: one pass over the stored words, each

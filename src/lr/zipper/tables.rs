@@ -3,10 +3,10 @@
 
 use super::packed::Packed;
 use super::{
-    BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, DELTAS, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT,
-    HEAD_WORDS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PLANE_WORDS, PREVIOUS,
-    RECORD_WORDS, SHORT_HEAD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_SECOND,
-    SUPER_SHIFT,
+    BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, COMPACT_SUPER_SHIFT, DELTAS, EXCEPTION, EXPLICIT,
+    EXPLICIT_SHIFT, HEAD_WORDS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PLANE_WORDS,
+    PREVIOUS, RECORD_WORDS, SHORT_HEAD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST,
+    STORES_SECOND, SUPER_SHIFT,
 };
 use crate::corner_table::NONE;
 use crate::lr::tables::{is_last_by_bits, ring_of_by_bits, LrLayout, LEFT, NULL, VALUE, WART};
@@ -33,8 +33,14 @@ pub struct ZipperTables<W> {
     /// Per block: the three symbol planes.
     pub(crate) planes: W,
     /// Per block: the two anchors, the exceptions and the records before it (four words; two
-    /// with `short_heads`).
+    /// with `short_heads`); empty in the compact form, whose heads are the two lists below.
     pub(crate) heads: W,
+    /// In the compact form (version 1.13): each block's left and right anchor as signed
+    /// offsets from its first vertex, in the header's anchor width.
+    pub(crate) anchors: Packed<W>,
+    /// In the compact form: each block's exceptions and records before it, as offsets from
+    /// those before its superblock of 16 blocks.
+    pub(crate) head_counts: Packed<W>,
     /// Exception words: WART flag and tip.
     pub(crate) exceptions: Packed<W>,
     /// Records of irregular slots: WART flag and tip, then the stored opposite.
@@ -50,8 +56,8 @@ pub struct ZipperTables<W> {
     pub(crate) t0_explicit: Packed<W>,
     /// A corner of each isolated vertex (`NONE` for a vertex without triangles).
     pub(crate) c: Packed<W>,
-    /// With `short_heads`, per superblock from the second: the exceptions and the records
-    /// before it.
+    /// With `short_heads` (superblocks of 256 blocks) or in the compact form (of 16), per
+    /// superblock from the second: the exceptions and the records before it.
     pub(crate) super_counts: W,
     pub(crate) m_r: u32,
     pub(crate) m: u32,
@@ -62,6 +68,8 @@ pub struct ZipperTables<W> {
     pub(crate) wart_deltas: bool,
     /// The header's `SHORT_HEADS` flag: two-word heads and superblock counts.
     pub(crate) short_heads: bool,
+    /// The compact form of the section (version 1.13): a short header and bit-field heads.
+    pub(crate) compact: bool,
     /// The header's `PACKED_LISTS` flag: the lists above as bit fields (read as words).
     pub(crate) packed_lists: bool,
     /// The header's `INNER_RING_STARTS` flag.
@@ -112,6 +120,23 @@ impl Slot {
     pub fn stored(&self) -> u128 {
         self.p[1] & self.p[2]
     }
+}
+
+/// The `width` bits (at most 32) of `words` from bit `bit` (numbered as in FORMAT.md
+/// §3.5e.1), the word after the last read as 0: a compact head's field.
+#[inline(always)]
+fn bits_at<W: Words>(words: &W, bit: usize, width: u32) -> u32 {
+    if width == 0 {
+        return 0;
+    }
+    let k = bit / 32;
+    // Both words with one bounds check, but for the last word, which has none after it.
+    let [low, high] = if k + 1 < words.count() {
+        words.array::<2>(k)
+    } else {
+        [words.at(k), 0]
+    };
+    (((high as u64) << 32 | low as u64) >> (bit % 32)) as u32 & (u32::MAX >> (32 - width))
 }
 
 /// Bit `bit` of a plane, from the 64-bit half that holds it (a shift of a `u128` by a
@@ -200,7 +225,21 @@ impl<W: Words> ZipperTables<W> {
     /// first slot.
     #[inline(always)]
     pub(crate) fn chain_head(&self, block: usize, side: usize) -> u32 {
-        if self.short_heads {
+        if self.compact {
+            let first = (block << BLOCK_SHIFT) as u32;
+            let width = self.anchors.field_width() as u32;
+            if width == 0 {
+                return first;
+            }
+            let field = bits_at(
+                &self.anchors.words,
+                (2 * block + side) * width as usize,
+                width,
+            );
+            // Sign-extended from `width` bits.
+            let offset = ((field << (32 - width)) as i32) >> (32 - width);
+            first.wrapping_add_signed(offset)
+        } else if self.short_heads {
             let offset = (self.heads.at(SHORT_HEAD_WORDS * block) >> (16 * side)) as u16 as i16;
             ((block << BLOCK_SHIFT) as u32).wrapping_add_signed(offset as i32)
         } else {
@@ -211,7 +250,16 @@ impl<W: Words> ZipperTables<W> {
     /// The exception words (`k` 0) or the records (`k` 1) before block `block`.
     #[inline(always)]
     pub(crate) fn before_block(&self, block: usize, k: usize) -> usize {
-        if self.short_heads {
+        if self.compact {
+            let [x, i] = self.head_counts.fields().map(|f| f.width as u32);
+            let bit = block * (x + i) as usize + k * x as usize;
+            let offset = bits_at(&self.head_counts.words, bit, [x, i][k]);
+            let base = match block >> COMPACT_SUPER_SHIFT {
+                0 => 0,
+                s => self.super_counts.at(2 * (s - 1) + k),
+            };
+            base as usize + offset as usize
+        } else if self.short_heads {
             let offset = (self.heads.at(SHORT_HEAD_WORDS * block + 1) >> (16 * k)) & 0xFFFF;
             let superblock = block >> SUPER_SHIFT;
             let base = match superblock {
@@ -299,6 +347,19 @@ impl<W: Words> ZipperTables<W> {
         self.short_heads
     }
 
+    /// Whether the section is in the compact form (version 1.13): a short header and heads
+    /// as bit fields.
+    pub fn compact(&self) -> bool {
+        self.compact
+    }
+
+    /// In the compact form, the widths of a head's fields in bits: anchor, exceptions,
+    /// records.
+    pub fn head_widths(&self) -> Option<[u8; 3]> {
+        let [x, i] = self.head_counts.fields().map(|f| f.width);
+        self.compact.then_some([self.anchors.field_width(), x, i])
+    }
+
     /// Whether the header's `PACKED_LISTS` flag is set (version 1.10).
     pub fn packed_lists(&self) -> bool {
         self.packed_lists
@@ -344,25 +405,44 @@ impl<W: Words> ZipperTables<W> {
     /// Words of the parts: symbols and heads, exceptions, records, T0 rows.
     pub(crate) fn part_words(&self) -> [usize; 4] {
         [
-            self.planes.count() + self.heads.count() + self.super_counts.count(),
+            self.planes.count()
+                + self.heads.count()
+                + self.anchors.words.count()
+                + self.head_counts.words.count()
+                + self.super_counts.count(),
             self.exceptions.words.count(),
             self.records.words.count() + self.pairs.words.count(),
             self.t0_v.words.count() + self.t0_codes.words.count() + self.t0_explicit.words.count(),
         ]
     }
 
-    /// Bytes of the tables as a container stores them, with the counts that describe them.
+    /// The eight counts of the header: `m`, `m_r`, `R`, `n0`, `X`, `I`, `P`, `E`.
+    pub fn header_counts(&self) -> [u32; 8] {
+        [
+            self.m,
+            self.m_r,
+            self.rings,
+            self.t0_count(),
+            self.exception_count() as u32,
+            self.record_count() as u32,
+            self.pair_count() as u32,
+            self.explicit_count() as u32,
+        ]
+    }
+
+    /// Bytes of the section as a container stores the tables, header included.
     pub fn stored_bytes(&self) -> u64 {
-        // m, m_r, rings, T0 rows, exceptions, records, pairs, explicit opposites.
-        const COUNTS: usize = 8;
-        let words = COUNTS
-            + self.ring_starts.count()
+        let header = match self.compact {
+            true => super::compact_header_len(super::count_bytes(&self.header_counts())),
+            false => 40,
+        };
+        let words = self.ring_starts.count()
             + self.ring_last.count()
             + self.ring_rank.count()
             + self.ring_blocks.words.count()
             + self.part_words().iter().sum::<usize>()
             + self.c.words.count();
-        4 * words as u64
+        header as u64 + 4 * words as u64
     }
 }
 

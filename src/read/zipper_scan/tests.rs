@@ -2,11 +2,13 @@
 //! that it agrees with the slot loop on every file it opens, so these tests forge files
 //! where the two could part.
 
+use crate::format::layout::ZiprHeader;
 use crate::format::Tag;
 use crate::generate::{self, Rng};
-use crate::lr::zipper::{BLOCK_SHIFT, SHORT_HEAD_WORDS};
+use crate::lr::zipper::{Field, FieldKind, Packed, BLOCK_SHIFT};
 use crate::lr::LrLayout;
 use crate::read::{open, Container, Limits};
+use crate::words::LeWords;
 use crate::write::{assemble, encode, Connectivity, EncodeOptions, SectionBytes};
 
 /// 1,500 Zipper files forged (see [`read_forged_files`]): under `cfg(test)`
@@ -21,7 +23,8 @@ fn the_fast_pass_and_the_slot_loop_agree_on_forged_files() {
 }
 
 /// A Zipper file of 30 blocks with holes and defects (the forged files of the fuzz
-/// targets have one block): its sections, and the index of `ZIPR`.
+/// targets have one block): its sections, and the index of `ZIPR`, whose anchors are
+/// rewritten 16 bits wide (so that any 16-bit offset can be forged).
 fn base(rng: &mut Rng) -> (Vec<SectionBytes>, usize) {
     let mut mesh = generate::torus(48, 40);
     generate::punch_holes(&mut mesh, 4, rng);
@@ -30,18 +33,48 @@ fn base(rng: &mut Rng) -> (Vec<SectionBytes>, usize) {
         connectivity: Connectivity::Zipper,
         ..EncodeOptions::default()
     };
-    crate::read::encoded_sections(&mesh, &options, Tag::ZIPR)
+    let (mut sections, z) = crate::read::encoded_sections(&mesh, &options, Tag::ZIPR);
+    sections[z].2 = with_wide_anchors(&sections[z].2);
+    (sections, z)
 }
 
-/// Where the heads of `ZIPR` (section `z` of `view`) start in the section.
+/// A compact `ZIPR` section with its anchors rewritten as 16-bit fields (the same values).
+pub(crate) fn with_wide_anchors(p: &[u8]) -> Vec<u8> {
+    let h = ZiprHeader::read(p);
+    let (anchor, _) = h.head_fields().expect("the compact form");
+    let heads = h.layout().expect("a valid layout").arrays[4];
+    let end = heads.start + 4 * h.anchor_words() as usize;
+    let old = Packed::new(
+        LeWords(&p[heads.start..end]),
+        2 * h.blocks() as usize,
+        anchor,
+    );
+    let wide = Field {
+        width: 16,
+        kind: FieldKind::Signed,
+    };
+    let values: Vec<u32> = old.iter().collect();
+    let wide = Packed::pack(&values, [wide; 2]).expect("anchors fit 16 bits");
+    let mut header = h;
+    header.compact.as_mut().expect("compact").anchor_bits = 16;
+    let mut out = header.to_bytes();
+    out.extend_from_slice(&p[h.header_len()..heads.start]);
+    for word in &wide.words {
+        out.extend_from_slice(&word.to_le_bytes());
+    }
+    out.extend_from_slice(&p[end..]);
+    out
+}
+
+/// Where the anchors of `ZIPR` (section `z` of `view`) start in the section.
 fn heads_at(view: &Container, z: usize) -> usize {
     let t = view.zipper().expect("Zipper tables");
-    assert!(t.short_heads(), "the writer's heads are short");
-    t.heads.0.as_ptr() as usize - view.sections.sections[z].bytes.as_ptr() as usize
+    assert_eq!(t.anchors.field_width(), 16, "the anchors are 16 bits wide");
+    t.anchors.words.0.as_ptr() as usize - view.sections.sections[z].bytes.as_ptr() as usize
 }
 
 /// Opens `base` with the chain anchor of `side` in `block` set to `offset` from the block's
-/// first vertex (short heads, whose words start at `heads_at` in `ZIPR`, section `z`).
+/// first vertex (16-bit anchors, which start at `heads_at` in `ZIPR`, section `z`).
 fn open_with_anchor(
     base: &[SectionBytes],
     (z, heads_at): (usize, usize),
@@ -49,7 +82,7 @@ fn open_with_anchor(
     side: usize,
     offset: i16,
 ) -> bool {
-    let at = heads_at + 4 * SHORT_HEAD_WORDS * block + 2 * side;
+    let at = heads_at + 4 * block + 2 * side;
     let mut sections = base.to_vec();
     sections[z].2[at..at + 2].copy_from_slice(&offset.to_le_bytes());
     open(&assemble(&sections), &Limits::default()).is_ok()
