@@ -335,30 +335,32 @@ fn compact_counts(before: &[u32]) -> (Packed<Vec<u32>>, Vec<u32>) {
     (packed, super_counts)
 }
 
-/// Checks that every slot and T0 opposite of `z` decodes to what `t` holds, on the tables
-/// `z` reads back as ([`ZipperTables::to_lr_tables`]: the decoder's answers, each block's
-/// planes read once). The operators read the tables through tips, WART and IRREGULAR flags,
-/// stored and T0 opposites (rings, `C` and T0 vertices are copied): when the first three
-/// agree on every slot, every inferred opposite agrees, so only irregular slots' opposites
-/// need comparing (they may be stored in one and inferred in the other).
+/// Checks that every slot and T0 opposite of `z` decodes to what `t` holds, as the decoder
+/// reads them ([`ZipperTables::each_slot`]: each block's planes read once, the chains
+/// followed slot by slot). The operators read the tables through tips, WART and IRREGULAR
+/// flags, stored and T0 opposites (rings, `C` and T0 vertices are copied): when the first
+/// three agree on every slot, every inferred opposite agrees, so only irregular slots'
+/// opposites need comparing (they may be stored in one and inferred in the other).
 fn same_as_standard(z: &ZipperTables<Vec<u32>>, t: &LrTables<Vec<u32>>) -> Result<()> {
-    let back = z.to_lr_tables();
-    for v in 0..t.m_r {
-        for side in 0..2 {
-            let irregular = t.irregular(v, side);
-            let same = back.tip_and_wart(v, side) == t.tip_and_wart(v, side)
-                && back.irregular(v, side) == irregular
-                && (!irregular
-                    || (0..2).all(|k| opposite(&back, v, side, k) == opposite(t, v, side, k)));
-            if !same {
-                return Err(Error::Internal(format!(
-                    "zipper slot ({v}, {side}) does not decode to the LR's"
-                )));
-            }
+    let mut first_fault = None;
+    z.each_slot(|(v, side), (tip, wart, irregular)| {
+        if first_fault.is_some() {
+            return;
         }
+        let same = (tip, wart) == t.tip_and_wart(v, side)
+            && irregular == t.irregular(v, side)
+            && (!irregular || (0..2).all(|k| opposite(z, v, side, k) == opposite(t, v, side, k)));
+        if !same {
+            first_fault = Some((v, side));
+        }
+    });
+    if let Some((v, side)) = first_fault {
+        return Err(Error::Internal(format!(
+            "zipper slot ({v}, {side}) does not decode to the LR's"
+        )));
     }
     for k in 0..3 * t.t0_count() {
-        if back.t0_opposite(k) != t.t0_opposite(k) {
+        if z.t0_opposite(k) != t.t0_opposite(k) {
             return Err(Error::Internal(format!(
                 "zipper T0 corner row {k} does not decode to the LR's opposite"
             )));

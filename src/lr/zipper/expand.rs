@@ -16,9 +16,17 @@ impl<W: Words> ZipperTables<W> {
     /// slot's record holds both opposites, stored or inferred. Memory: two words per ring
     /// vertex and three per irregular slot and T0 corner.
     pub(crate) fn to_lr_tables(&self) -> LrTables<Vec<u32>> {
-        let m_r = self.m_r;
-        let mut lr = Vec::with_capacity(2 * m_r as usize);
+        let mut lr = Vec::with_capacity(2 * self.m_r as usize);
         let mut vo_star = Vec::new();
+        self.each_slot(|slot, read| push_slot(self, slot, read, &mut lr, &mut vo_star));
+        with_slots(self, lr, vo_star)
+    }
+
+    /// Calls `f` with every slot `(v, side)` in slot order and its tip, WART flag and
+    /// whether it is irregular, as `tip_and_wart` and `irregular` give them: block by
+    /// block, each block's planes read once and each side's chain followed slot by slot.
+    pub(crate) fn each_slot(&self, mut f: impl FnMut((u32, usize), (u32, bool, bool))) {
+        let m_r = self.m_r;
         let blocks = (m_r as usize).div_ceil(1 << BLOCK_SHIFT);
         for block in 0..blocks {
             let mut slot = self.block_planes(block);
@@ -31,7 +39,7 @@ impl<W: Words> ZipperTables<W> {
             for v in first..m_r.min(first + (1 << BLOCK_SHIFT)) {
                 for side in [LEFT, RIGHT] {
                     slot.bit = 2 * (v - first) + side as u32;
-                    let (tip, wart, irregular) = match slot.symbol_at(slot.bit) {
+                    let read = match slot.symbol_at(slot.bit) {
                         s if s < DELTAS => {
                             chain[side] = chain[side].wrapping_sub(s);
                             let wart = self.before_t2(v, side, slot.group());
@@ -51,16 +59,9 @@ impl<W: Words> ZipperTables<W> {
                             (word & VALUE, word & WART != 0, irregular)
                         }
                     };
-                    push_slot(
-                        self,
-                        (v, side),
-                        (tip, wart, irregular),
-                        &mut lr,
-                        &mut vo_star,
-                    );
+                    f((v, side), read);
                 }
             }
         }
-        with_slots(self, lr, vo_star)
     }
 }
