@@ -649,7 +649,7 @@ impl ZiprHeader {
     /// Fields of `RING_BLOCKS`: one per block of 64 ring vertices (none without the flag).
     pub fn ring_block_count(&self) -> u64 {
         match self.ring_blocks() {
-            true => (self.m_r as u64).div_ceil(1 << crate::lr::zipper::BLOCK_SHIFT),
+            true => self.blocks(),
             false => 0,
         }
     }

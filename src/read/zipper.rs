@@ -113,7 +113,8 @@ pub(super) fn zipper_tables<'a>(
     ];
     // In the compact form, HEADS is two lists: the anchors' and the counts'.
     let anchor_bytes = 4 * h.anchor_words() as usize;
-    let (anchors, head_counts, heads) = match h.head_fields() {
+    let head_fields = h.head_fields();
+    let (anchors, head_counts, heads) = match head_fields {
         Some((anchor, counts)) => {
             let (a, c) = heads.0.split_at(anchor_bytes);
             let blocks = 2 * h.blocks() as usize;
@@ -139,7 +140,7 @@ pub(super) fn zipper_tables<'a>(
             (none(), none(), heads)
         }
     };
-    let count_fields = h.head_fields().map(|(_, counts)| counts);
+    let count_fields = head_fields.map(|(_, counts)| counts);
     // Where element `i` of an array starts (an error names its byte); in the compact form,
     // HEADS' element `i` is the counts' list's.
     let offset_of = |array: usize, i: usize| match (array, count_fields) {

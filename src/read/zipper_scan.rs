@@ -9,8 +9,8 @@
 
 use super::lr_rules::{slot_flag_masks, BitsSet, SlotBits};
 use crate::lr::zipper::{
-    Slot, BLOCK_SHIFT, COMPACT_SUPER_SHIFT, DELTAS, LEFT_SLOTS, PREVIOUS, RECORD_WORDS,
-    STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
+    below, Slot, BLOCK_SHIFT, DELTAS, LEFT_SLOTS, PREVIOUS, RECORD_WORDS, STATE_SHIFT, STORES_BOTH,
+    STORES_FIRST, STORES_NONE, STORES_SECOND,
 };
 use crate::lr::{LrLayout, ZipperTables, VALUE, WART};
 use crate::words::{LeWords, Words};
@@ -318,11 +318,6 @@ fn pack_bits(bytes: &[u8; 128]) -> u128 {
     })
 }
 
-/// The bits below bit `k` (all for `k` = 128).
-fn below(k: usize) -> u128 {
-    u128::MAX.checked_shr(128 - k as u32).unwrap_or(0)
-}
-
 /// [V58] on every slot, and the slot flags as [`SlotBits`], with the number of canonical ones;
 /// `None` when the rule fails.
 pub(super) fn scan_slots(t: &Tables) -> Option<(SlotBits, u64)> {
@@ -349,23 +344,9 @@ pub(super) fn scan_slots(t: &Tables) -> Option<(SlotBits, u64)> {
     // test cannot clear the block) for its delta slots; every other entry is masked out
     // where it is read, so the array is not cleared between blocks (512 bytes a block).
     let mut chained = [0u32; 128];
-    // In the compact form the heads' counts are read in one pass, in block order.
-    let mut compact_counts = t.head_counts.iter();
-    let mut bases = [0usize; 2];
     for block in 0..(m_r as usize).div_ceil(1 << BLOCK_SHIFT) {
         // Spelled out: through an array's `map` the head reads were not inlined.
-        let before = if t.compact {
-            if block > 0 && block % (1 << COMPACT_SUPER_SHIFT) == 0 {
-                let s = block >> COMPACT_SUPER_SHIFT;
-                bases = [0, 1].map(|k| t.super_counts.at(2 * (s - 1) + k) as usize);
-            }
-            let x = compact_counts.next().unwrap_or(0) as usize;
-            let i = compact_counts.next().unwrap_or(0) as usize;
-            [bases[0] + x, bases[1] + i]
-        } else {
-            [t.before_block(block, 0), t.before_block(block, 1)]
-        };
-        bad |= (before[0] != exceptions) | (before[1] != records);
+        bad |= (t.before_block(block, 0) != exceptions) | (t.before_block(block, 1) != records);
         let first = (block << BLOCK_SHIFT) as u32;
         let slot = t.block_planes(block);
         let used = 2 * ((m_r - first) as usize).min(1 << BLOCK_SHIFT);

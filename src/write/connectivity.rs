@@ -270,11 +270,7 @@ pub(crate) fn zipper_header(z: &Zipper) -> ZiprHeader {
         explicit: t.explicit_count() as u32,
         flags: boundary_flag(t)
             | if t.wart_deltas { ZIPPER_WART_DELTAS } else { 0 }
-            | if t.short_heads && !t.compact {
-                ZIPPER_SHORT_HEADS
-            } else {
-                0
-            }
+            | if t.short_heads { ZIPPER_SHORT_HEADS } else { 0 }
             | if t.packed_lists {
                 ZIPPER_PACKED_LISTS
             } else {

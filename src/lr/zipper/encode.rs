@@ -5,8 +5,8 @@
 use super::packed::{list_fields, ring_block_field, Field, FieldKind, Packed};
 use super::tables::{plane_array_words, ZipperTables};
 use super::{
-    BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, COMPACT_SUPER_SHIFT, DELTAS, EXCEPTION, EXPLICIT,
-    EXPLICIT_SHIFT, IRREGULAR_SLOT, LEFT_SLOTS, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PREVIOUS,
+    below, BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, COMPACT_SUPER_SHIFT, DELTAS, EXCEPTION,
+    EXPLICIT, EXPLICIT_SHIFT, IRREGULAR_SLOT, LEFT_SLOTS, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PREVIOUS,
     RECORD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
 };
 use crate::corner_table::NONE;
@@ -166,7 +166,7 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
         let (stored, deltas) = (p[1] & p[2], !p[2] & real);
         for (side, offset) in offsets.iter_mut().enumerate() {
             let mine = LEFT_SLOTS << side;
-            let before_stored = below((stored & mine).trailing_zeros());
+            let before_stored = below((stored & mine).trailing_zeros() as usize);
             if deltas & mine & before_stored == 0 {
                 *offset = 0;
             }
@@ -283,11 +283,6 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
     };
     same_as_standard(&z, t)?;
     Ok(z)
-}
-
-/// The bits below bit `k` (all for `k` = 128).
-fn below(k: u32) -> u128 {
-    u128::MAX.checked_shr(128 - k).unwrap_or(0)
 }
 
 /// The fewest bits that hold every one of `words` (two's complement) as a signed field.

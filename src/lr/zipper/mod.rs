@@ -45,7 +45,7 @@ pub use packed::{
     first_bit, list_fields, packed_words, ring_block_field, Field, FieldKind, Packed,
 };
 pub(crate) use tables::Slot;
-pub(crate) use tables::LEFT_SLOTS;
+pub(crate) use tables::{below, LEFT_SLOTS};
 pub use tables::{plane_array_words, ZipperTables};
 
 use super::{InputMaps, Lr, LrCounts, LrOptions};

@@ -216,16 +216,6 @@ impl<W: Words> Packed<W> {
         self.fields
     }
 
-    /// Elements.
-    pub fn len(&self) -> usize {
-        self.len
-    }
-
-    /// Whether the list has no element.
-    pub fn is_empty(&self) -> bool {
-        self.len == 0
-    }
-
     /// The words every element stands for, in order: one pass over the stored words, each
     /// read once (the readers' linear checks).
     pub fn iter(&self) -> impl Iterator<Item = u32> + '_ {

@@ -122,23 +122,6 @@ impl Slot {
     }
 }
 
-/// The `width` bits (at most 32) of `words` from bit `bit` (numbered as in FORMAT.md
-/// §3.5e.1), the word after the last read as 0: a compact head's field.
-#[inline(always)]
-fn bits_at<W: Words>(words: &W, bit: usize, width: u32) -> u32 {
-    if width == 0 {
-        return 0;
-    }
-    let k = bit / 32;
-    // Both words with one bounds check, but for the last word, which has none after it.
-    let [low, high] = if k + 1 < words.count() {
-        words.array::<2>(k)
-    } else {
-        [words.at(k), 0]
-    };
-    (((high as u64) << 32 | low as u64) >> (bit % 32)) as u32 & (u32::MAX >> (32 - width))
-}
-
 /// Bit `bit` of a plane, from the 64-bit half that holds it (a shift of a `u128` by a
 /// variable amount takes several instructions).
 #[inline(always)]
@@ -151,6 +134,12 @@ fn plane_bit(p: u128, bit: u32) -> u32 {
 #[inline]
 fn group_symbol(g: [u32; 3], b: usize) -> u32 {
     (g[0] >> b) & 1 | ((g[1] >> b) & 1) << 1 | ((g[2] >> b) & 1) << 2
+}
+
+/// The bits below bit `k` (all for `k` = 128).
+#[inline]
+pub(crate) fn below(k: usize) -> u128 {
+    u128::MAX.checked_shr(128 - k as u32).unwrap_or(0)
 }
 
 /// Bits `0..=i`.
@@ -226,19 +215,8 @@ impl<W: Words> ZipperTables<W> {
     #[inline(always)]
     pub(crate) fn chain_head(&self, block: usize, side: usize) -> u32 {
         if self.compact {
-            let first = (block << BLOCK_SHIFT) as u32;
-            let width = self.anchors.field_width() as u32;
-            if width == 0 {
-                return first;
-            }
-            let field = bits_at(
-                &self.anchors.words,
-                (2 * block + side) * width as usize,
-                width,
-            );
-            // Sign-extended from `width` bits.
-            let offset = ((field << (32 - width)) as i32) >> (32 - width);
-            first.wrapping_add_signed(offset)
+            let offset = self.anchors.at(2 * block + side);
+            ((block << BLOCK_SHIFT) as u32).wrapping_add(offset)
         } else if self.short_heads {
             let offset = (self.heads.at(SHORT_HEAD_WORDS * block) >> (16 * side)) as u16 as i16;
             ((block << BLOCK_SHIFT) as u32).wrapping_add_signed(offset as i32)
@@ -251,9 +229,7 @@ impl<W: Words> ZipperTables<W> {
     #[inline(always)]
     pub(crate) fn before_block(&self, block: usize, k: usize) -> usize {
         if self.compact {
-            let [x, i] = self.head_counts.fields().map(|f| f.width as u32);
-            let bit = block * (x + i) as usize + k * x as usize;
-            let offset = bits_at(&self.head_counts.words, bit, [x, i][k]);
+            let offset = self.head_counts.at(2 * block + k);
             let base = match block >> COMPACT_SUPER_SHIFT {
                 0 => 0,
                 s => self.super_counts.at(2 * (s - 1) + k),
