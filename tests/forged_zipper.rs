@@ -5,7 +5,7 @@
 mod common;
 
 use common::forge::*;
-use lrmesh::format::layout::{ZiprHeader, ZIPPER_COMPACT};
+use lrmesh::format::layout::{ZiprHeader, ZIPPER_COMPACT, ZIPPER_LEFT_FOURS, ZIPPER_RIGHT_FOURS};
 use lrmesh::format::Tag;
 use lrmesh::read::{open, open_verified, Limits, SEMANTIC_RULES};
 use lrmesh::{Error, Rule};
@@ -105,6 +105,25 @@ fn with_zipr_flags(bytes: &[u8], flags: u32) -> Vec<u8> {
     forge(bytes, Tag::ZIPR, |p| put(p, at, flags | compact))
 }
 
+/// `corpus/zipper-1.13/NAME`, a Zipper file of version 1.13 (without `LEFT_FOURS`) of
+/// `mesh`, which it must decode to.
+fn version_1_13(name: &str, mesh: &lrmesh::Mesh) -> Vec<u8> {
+    let path = manifest().join("corpus/zipper-1.13").join(name);
+    let bytes = std::fs::read(&path).unwrap();
+    assert_eq!(u16::from_le_bytes([bytes[10], bytes[11]]), 13, "{name}");
+    let view = open_verified(&bytes, &Limits::default()).unwrap();
+    assert_eq!(
+        view.summary().triangles,
+        mesh.triangles.len() as u64,
+        "{name}"
+    );
+    assert_eq!(
+        zipr_flags(&bytes).1 & (ZIPPER_LEFT_FOURS | ZIPPER_RIGHT_FOURS),
+        0
+    );
+    bytes
+}
+
 /// `bytes` with the compact header of `ZIPR` rewritten by `edit` (the arrays kept).
 fn with_header(bytes: &[u8], edit: impl FnOnce(&mut ZiprHeader)) -> Vec<u8> {
     forge(bytes, Tag::ZIPR, |p| {
@@ -187,7 +206,7 @@ fn v56_zipr_counts() {
     let at = section_at(&bytes, Tag::ZIPR);
     let field = |f: usize, x: u32| forge(&bytes, Tag::ZIPR, |p| put(p, f, x));
     breaks(&field(0, 24), 56, "ZIPR", at, "section MESH says 25");
-    breaks(&field(32, 64), 56, "ZIPR", at + 32, "unknown flag bits");
+    breaks(&field(32, 256), 56, "ZIPR", at + 32, "unknown flag bits");
     // INNER_RING_STARTS cleared: the counts then call for two more ring-start words.
     let flags = u32::from_le_bytes(payload(&bytes, Tag::ZIPR)[32..36].try_into().unwrap());
     assert_ne!(flags & 16, 0);
@@ -264,8 +283,8 @@ fn v56_compact_header() {
         );
     }
     let (_, flags) = zipr_flags(&bytes);
-    // SHORT_HEADS has no meaning in the compact form; bits 6 to 30 are 0.
-    for bad_flags in [flags | 4, flags | 64, flags | 1 << 30] {
+    // SHORT_HEADS has no meaning in the compact form; bits 8 to 30 are 0.
+    for bad_flags in [flags | 4, flags | 256, flags | 1 << 30] {
         breaks(
             &with_zipr_flags(&bytes, bad_flags),
             56,
@@ -305,12 +324,12 @@ fn v56_compact_header() {
         assert_eq!(a.summary().triangles, b.summary().triangles);
         lrmesh::fuzz_checks::walk_in_range(&b);
     }
-    // Four blocks: 7-bit anchors (eight fields, 56 bits of two words), 6- and 4-bit counts
-    // (40 bits of two words); a bit set past the last field of either list.
+    // Four blocks: 7-bit anchors (eight fields, 56 bits of two words), 5- and 4-bit counts
+    // (36 bits of two words); a bit set past the last field of either list.
     let anchored = spheres.clone();
     let h = ZiprHeader::read(&payload(&anchored, Tag::ZIPR));
     let c = h.compact.unwrap();
-    assert_eq!((c.anchor_bits, c.count_bits), (7, [6, 4]));
+    assert_eq!((c.anchor_bits, c.count_bits), (7, [5, 4]));
     let at4 = section_at(&anchored, Tag::ZIPR);
     let heads = h.layout().unwrap().arrays[HEADS];
     for (end, words) in [(heads.start + 8, "anchor"), (heads.end(), "count")] {
@@ -527,7 +546,7 @@ fn wart_deltas_cleared() {
     for name in [
         "torus_with_t0",
         "genus3_torus",
-        "two_components",
+        "four_spheres",
         "bent_normals",
     ] {
         let bytes = vector(&format!("{name}.zipper.lrm"));
@@ -541,6 +560,67 @@ fn wart_deltas_cleared() {
             "{name}: verified without WART_DELTAS"
         );
     }
+}
+
+/// `LEFT_FOURS` and `RIGHT_FOURS` (bits 6 and 7, version 1.14) cleared on the vectors, and
+/// `RIGHT_FOURS` set on those without it (meshes with `NULL` right slots): the slots of
+/// symbol 5 then read otherwise (a four as a redundant copy or `NULL`, a `NULL` as a four),
+/// which is not the mesh where such a slot exists: `open` refuses the file by a format error
+/// (the triangle count, when a slot reads as `NULL` or no longer does) or accepts it with
+/// every operator in range, and verification refuses it, unless the file has no such slot
+/// (two vectors with a border and no four): then it decodes to the same mesh.
+#[test]
+fn fours_flipped() {
+    let dir = manifest().join("spec/vectors");
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .filter(|n| n.ends_with(".zipper.lrm"))
+        .collect();
+    names.sort();
+    let (mut refused, mut right_set, mut read_alike) = (0, 0, 0);
+    for name in &names {
+        let bytes = vector(name);
+        let (_, flags) = zipr_flags(&bytes);
+        assert_ne!(
+            flags & ZIPPER_LEFT_FOURS,
+            0,
+            "{name}: the writer sets LEFT_FOURS"
+        );
+        let mut forged = vec![with_zipr_flags(
+            &bytes,
+            flags & !(ZIPPER_LEFT_FOURS | ZIPPER_RIGHT_FOURS),
+        )];
+        if flags & ZIPPER_RIGHT_FOURS == 0 {
+            forged.push(with_zipr_flags(&bytes, flags | ZIPPER_RIGHT_FOURS));
+            right_set += 1;
+        }
+        for bad in forged {
+            match open(&bad, &Limits::default()) {
+                Ok(view) => {
+                    lrmesh::fuzz_checks::walk_in_range(&view);
+                    match open_verified(&bad, &Limits::default()) {
+                        Err(_) => refused += 1,
+                        Ok(alike) => {
+                            // Only a file with no four and no NULL right slot reads so.
+                            let original = open_verified(&bytes, &Limits::default()).unwrap();
+                            assert_eq!(alike.to_mesh(), original.to_mesh(), "{name}");
+                            read_alike += 1;
+                        }
+                    }
+                }
+                // A slot read as NULL, or no longer, changes the triangle count ([V12]).
+                Err(Error::Format(_)) => refused += 1,
+                Err(e) => panic!("{name}: {e}"),
+            }
+        }
+    }
+    assert!(right_set >= 2, "{right_set} vectors without RIGHT_FOURS");
+    assert_eq!(refused + read_alike, names.len() + right_set);
+    assert!(
+        refused > 2 * read_alike,
+        "{refused} refused, {read_alike} read alike"
+    );
 }
 
 /// [V58] with superblocks: in the compact form a mesh of more than 16 blocks (1,024 ring
@@ -664,10 +744,10 @@ fn zero_width_lists_of_any_length() {
 }
 
 /// `bytes` with left slots `t` and `t + 2` of a ring of `slots` slots (mod `slots`, `t`
-/// not at the ring's end otherwise) made redundant copies (symbol 5, tip `v.n.n`), so that
-/// the first jumps to a slot with no canonical triangle, the next delta slot of the side
-/// taking their deltas so that every chain stays as it was; `None` when their symbols do not
-/// allow it.
+/// not at the ring's end otherwise) made redundant copies (symbol 5, tip `v.n.n`, read so
+/// without `LEFT_FOURS`, which `bytes` must not have), so that the first jumps to a slot with
+/// no canonical triangle, the next delta slot of the side taking their deltas so that every
+/// chain stays as it was; `None` when their symbols do not allow it.
 fn jump_to_a_redundant_slot(bytes: &[u8], t: usize, slots: usize) -> Option<Vec<u8>> {
     let block = |t: usize| t / 128;
     let [a, b, c] = [t, t + 2, t + 4].map(|x| x % slots);
@@ -693,8 +773,7 @@ fn jump_to_a_redundant_slot(bytes: &[u8], t: usize, slots: usize) -> Option<Vec<
 #[test]
 fn v19_jump_to_a_redundant_slot() {
     use lrmesh::generate::{append, torus};
-    use lrmesh::write::Connectivity::Zipper;
-    let bytes = encoded(&torus(24, 30), Zipper);
+    let bytes = version_1_13("torus_24x30.lrm", &torus(24, 30));
     let slots = 2 * ZiprHeader::read(&payload(&bytes, Tag::ZIPR)).m_r as usize;
     assert!(slots > 3 * 128, "several blocks");
     let mut tested = 0;
@@ -707,7 +786,7 @@ fn v19_jump_to_a_redundant_slot() {
     assert!(tested >= 4, "only {tested} slots tested on one ring");
     let mut two = torus(20, 24);
     append(&mut two, &torus(16, 20));
-    let bytes = encoded(&two, Zipper);
+    let bytes = version_1_13("two_tori.lrm", &two);
     let header = ZiprHeader::read(&payload(&bytes, Tag::ZIPR));
     assert_eq!(header.rings, 2);
     let second = 2 * zipr_get(&bytes, 0, 1) as usize; // ring_starts[1], as a slot

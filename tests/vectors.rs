@@ -137,7 +137,7 @@ fn listing(name: &str, bytes: &[u8]) -> String {
             name,
             z,
             format!(
-                "{n} triangles, {} ring vertices, {} T0 rows, {} exceptions, {} records, {} pairs, {} explicit T0 opposites, boundaries on the ring: {}, wart deltas: {}, short heads: {}, packed lists: {}, inner ring starts: {}, ring blocks: {}, compact: {}",
+                "{n} triangles, {} ring vertices, {} T0 rows, {} exceptions, {} records, {} pairs, {} explicit T0 opposites, boundaries on the ring: {}, wart deltas: {}, short heads: {}, packed lists: {}, inner ring starts: {}, ring blocks: {}, compact: {}, fours: {}",
                 z.ring_vertices(),
                 z.t0_count(),
                 z.exception_count(),
@@ -153,6 +153,12 @@ fn listing(name: &str, bytes: &[u8]) -> String {
                 match z.head_widths() {
                     Some([a, x, i]) => format!("heads of {a}-bit anchors, {x}- and {i}-bit counts"),
                     None => "false".into(),
+                },
+                match z.fours() {
+                    [false, false] => "none",
+                    [true, false] => "left",
+                    [false, true] => "right",
+                    [true, true] => "left and right",
                 }
             ),
         ),
@@ -477,37 +483,39 @@ fn vectors_match() {
 /// Zipper files of versions 1.7 (no `WART_DELTAS`: every wart an exception word), 1.8
 /// (four-word heads, before `SHORT_HEADS`), 1.9 (32-bit lists, before `PACKED_LISTS`), 1.10
 /// (every ring start stored, ring-end bits, before `INNER_RING_STARTS` and `RING_BLOCKS`)
-/// and 1.12 (the 40-byte header and two-word heads, before the compact form), kept from
-/// before each change, for `torus_with_t0` and `genus3_torus`, `two_components` of versions
-/// 1.10 and 1.12 (two rings) and `four_spheres` of version 1.12 (four rings over four
-/// blocks): they still open, verify, and give every corner's vertex and opposite as a file
+/// 1.12 (the 40-byte header and two-word heads, before the compact form) and 1.13 (before
+/// `LEFT_FOURS` and `RIGHT_FOURS`: a chain's step of 4 an exception word), kept from before
+/// each change, for `torus_with_t0` and `genus3_torus`, `two_components` of versions
+/// 1.10, 1.12 and 1.13 (two rings) and `four_spheres` of versions 1.12 and 1.13 (four rings
+/// over four blocks): they still open, verify, and give every corner's vertex and opposite as a file
 /// of the current version of the same ring does (the listing after its header lines). They
 /// were written from the ring of seed 1 alone: the current vectors come from the smallest
 /// of 32 seeds (level 6, `write::zipper_seeds`), so that file is written at level 5, which
 /// builds one.
 #[test]
-fn zipper_files_of_versions_1_7_to_1_12_read_the_same() {
+fn zipper_files_of_versions_1_7_to_1_13_read_the_same() {
     let versions = [
         (
             7,
-            "wart deltas: false, short heads: false, packed lists: false, inner ring starts: false, ring blocks: false, compact: false",
+            "wart deltas: false, short heads: false, packed lists: false, inner ring starts: false, ring blocks: false, compact: false, fours: none",
         ),
         (
             8,
-            "wart deltas: true, short heads: false, packed lists: false, inner ring starts: false, ring blocks: false, compact: false",
+            "wart deltas: true, short heads: false, packed lists: false, inner ring starts: false, ring blocks: false, compact: false, fours: none",
         ),
         (
             9,
-            "wart deltas: true, short heads: true, packed lists: false, inner ring starts: false, ring blocks: false, compact: false",
+            "wart deltas: true, short heads: true, packed lists: false, inner ring starts: false, ring blocks: false, compact: false, fours: none",
         ),
         (
             10,
-            "wart deltas: true, short heads: true, packed lists: true, inner ring starts: false, ring blocks: false, compact: false",
+            "wart deltas: true, short heads: true, packed lists: true, inner ring starts: false, ring blocks: false, compact: false, fours: none",
         ),
         (
             12,
-            "wart deltas: true, short heads: true, packed lists: true, inner ring starts: true, ring blocks: true, compact: false",
+            "wart deltas: true, short heads: true, packed lists: true, inner ring starts: true, ring blocks: true, compact: false, fours: none",
         ),
+        (13, "-bit counts, fours: none"),
     ];
     for name in [
         "torus_with_t0",
@@ -525,10 +533,15 @@ fn zipper_files_of_versions_1_7_to_1_12_read_the_same() {
         assert_eq!(lrmesh::write::zipper_seeds(5, mesh.triangles.len()), 1);
         let current = encode(&mesh, &one_seed).unwrap();
         let new_listing = listing(name, &current);
-        assert!(new_listing.lines().nth(1).unwrap().contains(
-            "wart deltas: true, short heads: false, packed lists: true, inner ring starts: true, \
-             ring blocks: true, compact: heads of"
-        ));
+        let header = new_listing.lines().nth(1).unwrap();
+        assert!(
+            header.contains(
+                "short heads: false, packed lists: true, inner ring starts: true, \
+                 ring blocks: true, compact: heads of"
+            ),
+            "{header}"
+        );
+        assert!(header.contains("fours: left"), "{header}");
         for &(minor, flags) in versions {
             let file = format!("{name}.zipper-1.{minor}.lrm");
             let old = std::fs::read(dir().join(&file)).unwrap();

@@ -424,8 +424,9 @@ pub struct ZiprHeader {
     /// `E`: explicit T0 opposites.
     pub explicit: u32,
     /// Flags: [`LR_BOUNDARIES_ON_RING`], [`ZIPPER_WART_DELTAS`], [`ZIPPER_SHORT_HEADS`],
-    /// [`ZIPPER_PACKED_LISTS`], [`ZIPPER_INNER_RING_STARTS`], [`ZIPPER_RING_BLOCKS`] (in the
-    /// compact form, bits 0–30 of its first word).
+    /// [`ZIPPER_PACKED_LISTS`], [`ZIPPER_INNER_RING_STARTS`], [`ZIPPER_RING_BLOCKS`],
+    /// [`ZIPPER_LEFT_FOURS`], [`ZIPPER_RIGHT_FOURS`] (in the compact form, bits 0–30 of its
+    /// first word).
     pub flags: u32,
     /// Reserved, 0 (the 40-byte header only).
     pub reserved: u32,
@@ -477,6 +478,18 @@ pub const ZIPPER_INNER_RING_STARTS: u32 = 16;
 /// several components.
 pub const ZIPPER_RING_BLOCKS: u32 = 32;
 
+/// `ZIPR` flag (FORMAT.md §3.5e.4, version 1.14): a left slot of symbol 5 is a *four*, a delta
+/// slot whose tip is the chain value minus 4, unless the left slot of the next vertex in its
+/// block has symbol 4 (then it is the T2's redundant copy, as before). A left symbol 5
+/// anywhere else was never written, and a chain's step of 4 (a vertex with four edges to the
+/// turn of the ring beside it) took an exception word: 40–60% of all exception words.
+pub const ZIPPER_LEFT_FOURS: u32 = 64;
+
+/// `ZIPR` flag (FORMAT.md §3.5e.4, version 1.14): as [`ZIPPER_LEFT_FOURS`] on the right side,
+/// where symbol 5 otherwise stands for `NULL` (no triangle): a writer sets it only when no
+/// right slot is `NULL` (a mesh without a border edge on the ring).
+pub const ZIPPER_RIGHT_FOURS: u32 = 128;
+
 impl ZiprHeader {
     /// Bytes of the header.
     pub const LEN: usize = 40;
@@ -500,6 +513,16 @@ impl ZiprHeader {
     /// Whether the section `b` (at least 4 bytes) begins with a compact header.
     pub fn is_compact(b: &[u8]) -> bool {
         le_u32(b, 0) & ZIPPER_COMPACT != 0
+    }
+
+    /// The flags word of the section `b` (at least 4 bytes), in either form: 0 when the
+    /// 40-byte header is cut before it.
+    pub fn flags_of(b: &[u8]) -> u32 {
+        match Self::is_compact(b) {
+            true => le_u32(b, 0) & !ZIPPER_COMPACT,
+            false if b.len() >= 36 => le_u32(b, 32),
+            false => 0,
+        }
     }
 
     /// The header at the start of `b`: at least [`ZiprHeader::LEN`] bytes, or in the compact

@@ -9,16 +9,17 @@ use super::Sections;
 use crate::corner_table::NONE;
 use crate::error::{Result, Rule};
 use crate::format::layout::{
-    ZiprHeader, LR_BOUNDARIES_ON_RING, ZIPPER_INNER_RING_STARTS, ZIPPER_PACKED_LISTS,
-    ZIPPER_RING_BLOCKS, ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
+    ZiprHeader, LR_BOUNDARIES_ON_RING, ZIPPER_INNER_RING_STARTS, ZIPPER_LEFT_FOURS,
+    ZIPPER_PACKED_LISTS, ZIPPER_RIGHT_FOURS, ZIPPER_RING_BLOCKS, ZIPPER_SHORT_HEADS,
+    ZIPPER_WART_DELTAS,
 };
 use crate::format::Tag;
 use crate::ids::Corner;
 use crate::lr::zipper::{
-    compact_header_len, first_bit, plane_array_words, ring_block_field, Field, Packed, BLOCK_SHIFT,
-    DELTAS, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT, HEAD_WORDS, IRREGULAR_SLOT, MAX_HEAD_WIDTH,
-    NEXT_NEXT_OR_NULL, PLANE_WORDS, PREVIOUS, RECORD_WORDS, SHORT_HEAD_WORDS, STATE_SHIFT,
-    STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
+    compact_header_len, first_bit, four_sides, plane_array_words, ring_block_field, Field, Packed,
+    BLOCK_SHIFT, DELTAS, EXCEPTION, EXPLICIT, EXPLICIT_SHIFT, FOUR, HEAD_WORDS, IRREGULAR_SLOT,
+    MAX_HEAD_WIDTH, NEXT_NEXT_OR_NULL, PLANE_WORDS, PREVIOUS, RECORD_WORDS, SHORT_HEAD_WORDS,
+    STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
 };
 use crate::lr::{LrLayout, ZipperTables, NULL, VALUE, WART};
 use crate::words::{LeWords, Words};
@@ -54,7 +55,9 @@ pub(super) fn zipper_tables<'a>(
         | if compact { 0 } else { ZIPPER_SHORT_HEADS }
         | ZIPPER_PACKED_LISTS
         | ZIPPER_INNER_RING_STARTS
-        | ZIPPER_RING_BLOCKS;
+        | ZIPPER_RING_BLOCKS
+        | ZIPPER_LEFT_FOURS
+        | ZIPPER_RIGHT_FOURS;
     if h.flags & !known != 0 || h.reserved != 0 {
         return Err(f.err(
             if compact { 0 } else { 32 },
@@ -250,6 +253,10 @@ pub(super) fn zipper_tables<'a>(
         packed_lists: h.flags & ZIPPER_PACKED_LISTS != 0,
         inner_ring_starts: h.inner_ring_starts(),
         ring_blocks_flag: h.flags & ZIPPER_RING_BLOCKS != 0,
+        four_sides: four_sides(
+            h.flags & ZIPPER_LEFT_FOURS != 0,
+            h.flags & ZIPPER_RIGHT_FOURS != 0,
+        ),
     };
     debug_assert_eq!(tables.planes.count(), plane_array_words(m_r));
 
@@ -459,6 +466,7 @@ fn check_slots(
             ));
         }
         let symbols = block_symbols(&slot);
+        let fours = t.block_fours(&slot);
         let mut chain = [0, 1].map(|side| t.chain_head(block, side));
         for bit in 0..used {
             let (v, side) = (first + bit / 2, (bit % 2) as usize);
@@ -473,13 +481,14 @@ fn check_slots(
                 t.symbol(next, side)
             };
             let before_t2 = t.wart_deltas & (next_symbol == PREVIOUS);
+            let four = fours >> bit & 1 != 0;
             let tip = match s {
-                s if s < DELTAS => {
+                s if s < DELTAS || four => {
                     wart = before_t2 as u32;
-                    chain[side] = chain[side].wrapping_sub(s);
+                    chain[side] = chain[side].wrapping_sub(if four { FOUR } else { s });
                     chain[side]
                 }
-                NEXT_NEXT_OR_NULL if side == 1 && !before_t2 => NULL,
+                NEXT_NEXT_OR_NULL if side == 1 && !before_t2 && !t.fours()[1] => NULL,
                 EXCEPTION | IRREGULAR_SLOT => {
                     let (array, at, count) = if s == EXCEPTION {
                         exceptions += 1;
@@ -551,7 +560,7 @@ fn check_slots(
                 PREVIOUS => t.ring_prev(v),
                 _ => t.ring_next(next),
             };
-            if tip >= m && !(tip == NULL && s == NEXT_NEXT_OR_NULL) {
+            if tip >= m && !(tip == NULL && s == NEXT_NEXT_OR_NULL && !four) {
                 return Err(word_err(
                     PLANES,
                     PLANE_WORDS * block,

@@ -9,8 +9,8 @@
 
 use super::lr_rules::{slot_flag_masks, BitsSet, SlotBits};
 use crate::lr::zipper::{
-    below, Slot, BLOCK_SHIFT, DELTAS, LEFT_SLOTS, PREVIOUS, RECORD_WORDS, STATE_SHIFT, STORES_BOTH,
-    STORES_FIRST, STORES_NONE, STORES_SECOND,
+    below, Slot, BLOCK_SHIFT, DELTAS, FOUR, LEFT_SLOTS, PREVIOUS, RECORD_WORDS, STATE_SHIFT,
+    STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
 };
 use crate::lr::{LrLayout, ZipperTables, VALUE, WART};
 use crate::words::{LeWords, Words};
@@ -201,17 +201,20 @@ fn ring_ends(t: &Tables, first: u32, count: usize) -> u64 {
 }
 
 /// Each side's chain through block `block` (`used` slots): the tip of every delta slot,
-/// its side's tip decremented by its symbol, in runs between the stored slots (whose words
+/// its side's tip decremented by its symbol (a four's by 4), in runs between the stored slots (whose words
 /// `chained` already holds), without a branch per slot.
 fn chain_block(
     t: &Tables,
     block: usize,
     used: usize,
     symbols: &[u8; 128],
-    stored: u128,
+    (stored, fours): (u128, u128),
     chained: &mut [u32; 128],
 ) {
-    let deltas = symbols.map(|s| if (s as u32) < DELTAS { s } else { 0 });
+    let mut deltas = symbols.map(|s| if (s as u32) < DELTAS { s } else { 0 });
+    for bit in Bits128(fours) {
+        deltas[bit] = FOUR as u8;
+    }
     for side in 0..2 {
         let mut chain = t.chain_head(block, side);
         let mut bit = side;
@@ -239,7 +242,7 @@ fn chain_block(
 /// their own slots, [`runs_clear`] looks run by run.
 fn chains_clear(
     t: &Tables,
-    slot: &Slot,
+    (slot, fours): (&Slot, u128),
     block: usize,
     chained: &[u32; 128],
     n: &Neighbours,
@@ -247,17 +250,20 @@ fn chains_clear(
 ) -> bool {
     let stored = slot.stored();
     (0..2).all(|side| {
-        let d = decrement(slot, LEFT_SLOTS << side);
+        let d = decrement(slot, fours, LEFT_SLOTS << side);
         let clear = |b: u32| interval_clear(b, d, m, n.nn_low, n.nn_high);
         clear(t.chain_head(block, side))
             && Bits128(stored & LEFT_SLOTS << side).all(|bit| clear(chained[bit]))
     })
 }
 
-/// The sum of the delta symbols of `slots`: how far a chain decreases over them.
-fn decrement(slot: &Slot, slots: u128) -> u32 {
+/// The sum of the delta symbols of `slots` (4 for each of the `fours`): how far a chain
+/// decreases over them.
+fn decrement(slot: &Slot, fours: u128, slots: u128) -> u32 {
     let deltas = !slot.p[2] & slots;
-    (slot.p[0] & deltas).count_ones() + 2 * (slot.p[1] & deltas).count_ones()
+    (slot.p[0] & deltas).count_ones()
+        + 2 * (slot.p[1] & deltas).count_ones()
+        + FOUR * (fours & slots).count_ones()
 }
 
 /// Whether tips in `[b − d, b]` are all vertices (below `m`, none below 0) and none lies in
@@ -273,7 +279,7 @@ fn interval_clear(b: u32, d: u32, m: u32, low: u32, high: u32) -> bool {
 #[inline(never)]
 fn runs_clear(
     t: &Tables,
-    slot: &Slot,
+    (slot, fours): (&Slot, u128),
     block: usize,
     chained: &[u32; 128],
     nn: &[u32],
@@ -294,7 +300,7 @@ fn runs_clear(
                     let (first, last) = (run.trailing_zeros(), 127 - run.leading_zeros());
                     interval_clear(
                         b,
-                        decrement(slot, run),
+                        decrement(slot, fours, run),
                         m,
                         nn[first as usize],
                         nn[last as usize],
@@ -374,16 +380,18 @@ pub(super) fn scan_slots(t: &Tables) -> Option<(SlotBits, u64)> {
         let stored_wart = wart_halves[0] as u128 | (wart_halves[1] as u128) << 64;
         let n = Neighbours::of_block(t, first, used, &slot);
         let [p0, p1, p2] = slot.p;
-        let (delta, rule_5, irregular) = (!p2, p0 & !p1 & p2, slot.irregular());
+        let fours = t.block_fours(&slot);
+        let (delta, rule_5, irregular) = (!p2 | fours, p0 & !p1 & p2 & !fours, slot.irregular());
         let from_chain = delta | stored;
         // The slots whose chained tip is `v.n.n`. A block whose chains provably reach
         // neither outside the vertices nor one of its `v.n.n` (most) skips the chains; the
         // others chain each side in runs between its stored slots.
         let mut chained_next_next = 0u128;
-        if !chains_clear(t, &slot, block, &chained, &n, m) {
+        if !chains_clear(t, (&slot, fours), block, &chained, &n, m) {
             let nn = n.nn(t);
-            if !runs_clear(t, &slot, block, &chained, &nn[..used], m) {
-                chain_block(t, block, used, &block_symbols(&slot), stored, &mut chained);
+            if !runs_clear(t, (&slot, fours), block, &chained, &nn[..used], m) {
+                let symbols = block_symbols(&slot);
+                chain_block(t, block, used, &symbols, (stored, fours), &mut chained);
                 let mut outside = [0u8; 128];
                 let mut at_next_next = [0u8; 128];
                 for bit in 0..128 {
@@ -399,7 +407,9 @@ pub(super) fn scan_slots(t: &Tables) -> Option<(SlotBits, u64)> {
         // on a ring of 4 or more, V16), `v.n.n` or `NULL` (symbol 5, on the right unless the
         // slot is a wart's).
         let before_t2 = if t.wart_deltas { n.next_is_t2 } else { 0 };
-        let null = rule_5 & LEFT_SLOTS << 1 & !before_t2;
+        // With RIGHT_FOURS a right symbol 5 that is not a four is a redundant copy.
+        let right_nulls = if t.fours()[1] { 0 } else { LEFT_SLOTS << 1 };
+        let null = rule_5 & right_nulls & !before_t2;
         let next_next = (from_chain & chained_next_next) | (rule_5 & !null);
         let wart = (delta & before_t2) | stored_wart;
         let (block_canonical, jumps) = slot_flag_masks(next_next, !null, wart, irregular);

@@ -3,37 +3,45 @@
 //! with the standard LR's.
 
 use super::packed::{list_fields, ring_block_field, Field, FieldKind, Packed};
-use super::tables::{plane_array_words, ZipperTables};
+use super::tables::{four_sides, last_vertex_bits, plane_array_words, Slot, ZipperTables};
 use super::{
     below, BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, COMPACT_SUPER_SHIFT, DELTAS, EXCEPTION,
-    EXPLICIT, EXPLICIT_SHIFT, IRREGULAR_SLOT, LEFT_SLOTS, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PREVIOUS,
-    RECORD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
+    EXPLICIT, EXPLICIT_SHIFT, FOUR, IRREGULAR_SLOT, LEFT_SLOTS, NEXT_NEXT_OR_NULL, NO_OPPOSITE,
+    PREVIOUS, RECORD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
 };
 use crate::corner_table::NONE;
 use crate::error::{Error, Result};
 use crate::lr::read_back::opposite;
-use crate::lr::tables::{LrLayout, LrTables, IRREGULAR, LEFT, NULL, WART};
+use crate::lr::tables::{LrLayout, LrTables, IRREGULAR, LEFT, NULL, RIGHT, WART};
 
-/// Whether slot `(v, side)` of `t` is followed on its side by a canonical T2 (symbol
-/// [`PREVIOUS`]). Such a slot holds the T2's redundant copy or a wart (the T2 is the
-/// triangle on that side of the slot's ring edge), and with `WART_DELTAS` its symbols read
-/// so (OPERATORS.md §8.1).
+/// Whether slot `(v, side)` of `t` is a canonical T2 (symbol [`PREVIOUS`]).
+fn is_canonical_t2(t: &LrTables<Vec<u32>>, v: u32, side: usize) -> bool {
+    t.entry(v, side) & (IRREGULAR | WART) == 0 && t.tip(v, side) == t.ring_prev(v)
+}
+
+/// Whether slot `(v, side)` of `t` is followed on its side by a canonical T2. Such a slot
+/// holds the T2's redundant copy or a wart (the T2 is the triangle on that side of the
+/// slot's ring edge), and with `WART_DELTAS` its symbols read so (OPERATORS.md §8.1).
 fn before_t2(t: &LrTables<Vec<u32>>, v: u32, side: usize) -> bool {
-    let next = t.ring_next(v);
-    t.entry(next, side) & (IRREGULAR | WART) == 0 && t.tip(next, side) == t.ring_prev(next)
+    is_canonical_t2(t, t.ring_next(v), side)
 }
 
 /// What slot `(v, side)` of `t` stores after chain value `chain`: its symbol, the chain
 /// value after it, and the word (WART flag and tip) it adds to the exception or record list,
 /// if any. A slot `before_t2` a canonical T2 is coded for the `WART_DELTAS` reading: a wart
 /// as a delta when its tip is a small decrement of the chain, the redundant copy as symbol 5
-/// on either side, anything else as an exception.
+/// on either side, anything else as an exception. On a side with fours, `fours` says whether
+/// the slot is the last ring vertex's or the next vertex's slot in the block is a canonical
+/// T2: then symbol 5
+/// reads the T2's redundant copy, otherwise a four (FORMAT.md §3.5e.4), and the slot takes
+/// symbol 5 only when that reading gives its tip and WART flag.
 fn symbol(
     t: &LrTables<Vec<u32>>,
     v: u32,
     side: usize,
     chain: u32,
     before_t2: bool,
+    fours: Option<bool>,
 ) -> (u32, u32, Option<u32>) {
     let entry = t.entry(v, side);
     let tip = t.tip(v, side);
@@ -43,24 +51,33 @@ fn symbol(
     }
     let delta = chain.wrapping_sub(tip);
     let next_next = t.ring_next(t.ring_next(v));
+    let wart = entry & WART != 0;
+    if fours == Some(true) && !wart && tip == next_next {
+        return (NEXT_NEXT_OR_NULL, chain, None);
+    }
+    // Symbol 5 as a four, or as the ring rules read it (without fours on this side).
+    let four = fours == Some(false) && delta == FOUR;
+    let rule_5 = fours.is_none();
     if before_t2 {
         return match delta {
-            0..=3 if entry & WART != 0 => (delta, tip, None),
-            _ if entry & WART == 0 && tip == next_next => (NEXT_NEXT_OR_NULL, chain, None),
+            0..=3 if wart => (delta, tip, None),
+            _ if four && wart => (NEXT_NEXT_OR_NULL, tip, None),
+            _ if rule_5 && !wart && tip == next_next => (NEXT_NEXT_OR_NULL, chain, None),
             _ => (EXCEPTION, tip, Some(stored)),
         };
     }
-    if entry & WART != 0 {
+    if wart {
         return (EXCEPTION, tip, Some(stored));
     }
     if tip == t.ring_prev(v) {
         return (PREVIOUS, chain, None);
     }
-    if tip == if side == LEFT { next_next } else { NULL } {
+    if rule_5 && tip == if side == LEFT { next_next } else { NULL } {
         return (NEXT_NEXT_OR_NULL, chain, None);
     }
     match delta {
         0..=3 => (delta, tip, None),
+        _ if four => (NEXT_NEXT_OR_NULL, tip, None),
         _ => (EXCEPTION, tip, Some(stored)),
     }
 }
@@ -122,6 +139,9 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
     // Whether some slot needs the WART_DELTAS reading: only then is the flag set (and the
     // file version 1.8).
     let mut wart_deltas = false;
+    // Fours on the left always; on the right when no right slot is NULL, for symbol 5 stands
+    // for NULL there otherwise.
+    let sides = four_sides(true, (0..m_r).all(|v| t.tip(v, RIGHT) != NULL));
     for block in 0..blocks {
         let first = (block << BLOCK_SHIFT) as u32;
         // An anchor more than 16 bits from the block's first vertex is not stored: the chain
@@ -136,15 +156,19 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
         }
         counts_before.extend([exceptions.len(), records.len() / RECORD_WORDS].map(|n| n as u32));
         let mut p = [0u128; 3];
-        for v in first..m_r.min(first + (1 << BLOCK_SHIFT)) {
+        let end = m_r.min(first + (1 << BLOCK_SHIFT));
+        for v in first..end {
             for (side, chain) in chain.iter_mut().enumerate() {
                 let before_t2 = before_t2(t, v, side);
-                let (s, next, word) = symbol(t, v, side, *chain, before_t2);
+                let fours = (sides & LEFT_SLOTS << side != 0)
+                    .then(|| v + 1 == m_r || v + 1 < end && is_canonical_t2(t, v + 1, side));
+                let (s, next, word) = symbol(t, v, side, *chain, before_t2, fours);
                 *chain = next;
-                // A delta or a right symbol 5 before a canonical T2 reads differently
-                // without the flag.
-                wart_deltas |=
-                    before_t2 && (s < DELTAS || (s == NEXT_NEXT_OR_NULL && side != LEFT));
+                // A delta, a four or a right symbol 5 of the ring rules before a canonical
+                // T2 reads differently without the flag.
+                let four = s == NEXT_NEXT_OR_NULL && fours == Some(false);
+                let right_rule_5 = s == NEXT_NEXT_OR_NULL && side != LEFT && fours.is_none();
+                wart_deltas |= before_t2 && (s < DELTAS || four || right_rule_5);
                 match s {
                     EXCEPTION => exceptions.extend(word),
                     IRREGULAR_SLOT => {
@@ -163,7 +187,8 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
         // slot; with none, it is stored as 0 (so that it does not widen the field).
         let slots = 2 * (m_r - first).min(1 << BLOCK_SHIFT);
         let real = u128::MAX.checked_shr(128 - slots).unwrap_or(0);
-        let (stored, deltas) = (p[1] & p[2], !p[2] & real);
+        let fours = Slot { block, bit: 0, p }.fours(sides, last_vertex_bits(m_r, block));
+        let (stored, deltas) = (p[1] & p[2], (!p[2] | fours) & real);
         for (side, offset) in offsets.iter_mut().enumerate() {
             let mine = LEFT_SLOTS << side;
             let before_stored = below((stored & mine).trailing_zeros() as usize);
@@ -280,6 +305,7 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
         packed_lists: true,
         inner_ring_starts: true,
         ring_blocks_flag: true,
+        four_sides: sides,
     };
     same_as_standard(&z, t)?;
     Ok(z)

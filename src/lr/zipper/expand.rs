@@ -5,7 +5,7 @@
 //! faster.
 
 use super::tables::ZipperTables;
-use super::{BLOCK_SHIFT, DELTAS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PREVIOUS, RECORD_WORDS};
+use super::{BLOCK_SHIFT, DELTAS, FOUR, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PREVIOUS, RECORD_WORDS};
 use crate::lr::read_back::{push_slot, with_slots};
 use crate::lr::tables::{LrTables, LEFT, RIGHT, VALUE, WART};
 use crate::words::Words;
@@ -35,13 +35,15 @@ impl<W: Words> ZipperTables<W> {
             // order: a slot's tip as `tip_and_wart` gives it, without summing the chain
             // from the last stored slot for every slot.
             let mut chain = [LEFT, RIGHT].map(|side| self.chain_head(block, side));
+            let fours = self.block_fours(&slot);
             let (mut x, mut r) = (self.before_block(block, 0), self.before_block(block, 1));
             for v in first..m_r.min(first + (1 << BLOCK_SHIFT)) {
                 for side in [LEFT, RIGHT] {
                     slot.bit = 2 * (v - first) + side as u32;
+                    let four = fours >> slot.bit & 1 != 0;
                     let read = match slot.symbol_at(slot.bit) {
-                        s if s < DELTAS => {
-                            chain[side] = chain[side].wrapping_sub(s);
+                        s if s < DELTAS || four => {
+                            chain[side] = chain[side].wrapping_sub(if four { FOUR } else { s });
                             let wart = self.before_t2(v, side, slot.group());
                             (chain[side], wart, false)
                         }

@@ -45,7 +45,7 @@ pub use packed::{
     first_bit, list_fields, packed_words, ring_block_field, Field, FieldKind, Packed,
 };
 pub(crate) use tables::Slot;
-pub(crate) use tables::{below, LEFT_SLOTS};
+pub(crate) use tables::{below, four_sides, LEFT_SLOTS};
 pub use tables::{plane_array_words, ZipperTables};
 
 use super::{InputMaps, Lr, LrCounts, LrOptions};
@@ -61,6 +61,9 @@ pub const DELTAS: u32 = 4;
 pub const PREVIOUS: u32 = 4;
 /// Symbol: the tip is `v.n.n` on the left, `NULL` on the right.
 pub const NEXT_NEXT_OR_NULL: u32 = 5;
+/// The decrement of a *four*: a slot of symbol 5 that the header's `LEFT_FOURS` or
+/// `RIGHT_FOURS` flag makes a delta slot (FORMAT.md §3.5e.4).
+pub const FOUR: u32 = 4;
 /// Symbol: the slot's tip and WART flag are in the exception list.
 pub const EXCEPTION: u32 = 6;
 /// Symbol: the slot is irregular, its record in the record list.

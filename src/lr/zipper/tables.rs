@@ -4,7 +4,7 @@
 use super::packed::Packed;
 use super::{
     BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, COMPACT_SUPER_SHIFT, DELTAS, EXCEPTION, EXPLICIT,
-    EXPLICIT_SHIFT, HEAD_WORDS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PLANE_WORDS,
+    EXPLICIT_SHIFT, FOUR, HEAD_WORDS, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, NO_OPPOSITE, PLANE_WORDS,
     PREVIOUS, RECORD_WORDS, SHORT_HEAD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST,
     STORES_SECOND, SUPER_SHIFT,
 };
@@ -76,6 +76,9 @@ pub struct ZipperTables<W> {
     pub(crate) inner_ring_starts: bool,
     /// The header's `RING_BLOCKS` flag.
     pub(crate) ring_blocks_flag: bool,
+    /// The slots of the sides whose symbol 5 may be a four (a delta of 4): the left ones
+    /// with the header's `LEFT_FOURS` flag, the right ones with `RIGHT_FOURS`.
+    pub(crate) four_sides: u128,
 }
 
 /// The symbol planes of one block and where a slot lies in them.
@@ -120,6 +123,16 @@ impl Slot {
     pub fn stored(&self) -> u128 {
         self.p[1] & self.p[2]
     }
+
+    /// The block's *fours* among the slots `sides` (FORMAT.md §3.5e.4): symbol 5 where the
+    /// slot two bits on (the next vertex's on the same side; none past the block) is not
+    /// symbol 4, but for the last ring vertex's slots (`last`: their bits, if in the block).
+    #[inline(always)]
+    pub fn fours(&self, sides: u128, last: u128) -> u128 {
+        let [p0, p1, p2] = self.p;
+        let t2 = !p0 & !p1 & p2;
+        p0 & !p1 & p2 & sides & !(t2 >> 2) & !last
+    }
 }
 
 /// Bit `bit` of a plane, from the 64-bit half that holds it (a shift of a `u128` by a
@@ -134,6 +147,22 @@ fn plane_bit(p: u128, bit: u32) -> u32 {
 #[inline]
 fn group_symbol(g: [u32; 3], b: usize) -> u32 {
     (g[0] >> b) & 1 | ((g[1] >> b) & 1) << 1 | ((g[2] >> b) & 1) << 2
+}
+
+/// The slots whose symbol 5 may be a four: the left ones with `LEFT_FOURS`, the right ones
+/// with `RIGHT_FOURS` (FORMAT.md §3.5e.4).
+pub(crate) fn four_sides(left: bool, right: bool) -> u128 {
+    (if left { LEFT_SLOTS } else { 0 }) | (if right { LEFT_SLOTS << 1 } else { 0 })
+}
+
+/// The bits of the last ring vertex's slots in block `block` (none in the others).
+#[inline(always)]
+pub(crate) fn last_vertex_bits(m_r: u32, block: usize) -> u128 {
+    let first = (block << BLOCK_SHIFT) as u32;
+    match m_r - first <= 1 << BLOCK_SHIFT {
+        true => 3 << (2 * (m_r - first - 1)),
+        false => 0,
+    }
 }
 
 /// The bits below bit `k` (all for `k` = 128).
@@ -168,13 +197,16 @@ impl<W: Words> ZipperTables<W> {
         group_symbol(self.group(slot / 32), slot % 32)
     }
 
-    /// The planes of slot `(v, side)`'s block up to the slot's group (the bits after it
-    /// read as 0: nothing below reads them).
+    /// The planes of slot `(v, side)`'s block (every group of it: a four is told by the slot
+    /// two bits on, which may lie in the next group).
     #[inline(always)]
     pub(crate) fn slot(&self, v: u32, side: usize) -> Slot {
         let block = (v >> BLOCK_SHIFT) as usize;
         let bit = 2 * (v & ((1 << BLOCK_SHIFT) - 1)) + side as u32;
-        self.planes_until(block, bit / 32, bit)
+        Slot {
+            bit,
+            ..self.block_planes(block)
+        }
     }
 
     /// The planes of block `block`'s groups `0..=last` (of all four when the block is
@@ -282,8 +314,23 @@ impl<W: Words> ZipperTables<W> {
             (self.stored_word(slot, j) & VALUE, same & !up_to(j))
         };
         let deltas = range & !slot.p[2];
-        let sum = (slot.p[0] & deltas).count_ones() + 2 * (slot.p[1] & deltas).count_ones();
+        let mut sum = (slot.p[0] & deltas).count_ones() + 2 * (slot.p[1] & deltas).count_ones();
+        if self.four_sides != 0 {
+            sum += FOUR * (self.block_fours(slot) & range).count_ones();
+        }
         base.wrapping_sub(sum)
+    }
+
+    /// Whether the slot of symbol 5 at `slot.bit` is a four (a delta slot).
+    #[inline(always)]
+    pub(crate) fn is_four(&self, slot: &Slot) -> bool {
+        self.four_sides != 0 && plane_bit(self.block_fours(slot), slot.bit) != 0
+    }
+
+    /// The fours of `slot`'s block.
+    #[inline(always)]
+    pub(crate) fn block_fours(&self, slot: &Slot) -> u128 {
+        slot.fours(self.four_sides, last_vertex_bits(self.m_r, slot.block))
     }
 
     /// With `WART_DELTAS`, whether the next slot of `(v, side)`'s side is a canonical T2
@@ -305,13 +352,17 @@ impl<W: Words> ZipperTables<W> {
         next_symbol == PREVIOUS
     }
 
-    /// The tip the ring rules give a slot of symbol 4 (`v.p`) or 5 (`v.n.n` on the left or
-    /// before a canonical T2, else `NULL`).
+    /// The tip the ring rules give a slot of symbol 4 (`v.p`) or 5 that is not a four
+    /// (`v.n.n` on the left, on a right side with fours or before a canonical T2, else
+    /// `NULL`).
     #[inline(always)]
     pub(crate) fn ring_rule_tip(&self, slot: &Slot, v: u32, side: usize, symbol: u32) -> u32 {
         if symbol == PREVIOUS {
             self.ring_prev(v)
-        } else if side == LEFT || self.before_t2(v, side, slot.group()) {
+        } else if side == LEFT
+            || self.four_sides != 0 && plane_bit(self.four_sides, slot.bit) != 0
+            || self.before_t2(v, side, slot.group())
+        {
             self.ring_next(self.ring_next(v))
         } else {
             NULL
@@ -356,6 +407,11 @@ impl<W: Words> ZipperTables<W> {
     /// Whether the header's `WART_DELTAS` flag is set (version 1.8).
     pub fn wart_deltas(&self) -> bool {
         self.wart_deltas
+    }
+
+    /// Whether the header's `LEFT_FOURS` and `RIGHT_FOURS` flags are set (version 1.14).
+    pub fn fours(&self) -> [bool; 2] {
+        [LEFT_SLOTS, LEFT_SLOTS << 1].map(|side| self.four_sides & side != 0)
     }
 
     /// Number of exception slots.
@@ -494,6 +550,7 @@ impl<W: Words> LrLayout for ZipperTables<W> {
         let slot = self.slot(v, side);
         match slot.symbol_at(slot.bit) {
             s if s < DELTAS => self.chain(&slot),
+            NEXT_NEXT_OR_NULL if self.is_four(&slot) => self.chain(&slot),
             s @ (PREVIOUS | NEXT_NEXT_OR_NULL) => self.ring_rule_tip(&slot, v, side, s),
             _ => self.stored_word(&slot, slot.bit) & VALUE,
         }
@@ -503,6 +560,9 @@ impl<W: Words> LrLayout for ZipperTables<W> {
         let slot = self.slot(v, side);
         match slot.symbol_at(slot.bit) {
             s if s < DELTAS => (self.chain(&slot), self.before_t2(v, side, slot.group())),
+            NEXT_NEXT_OR_NULL if self.is_four(&slot) => {
+                (self.chain(&slot), self.before_t2(v, side, slot.group()))
+            }
             s @ (PREVIOUS | NEXT_NEXT_OR_NULL) => (self.ring_rule_tip(&slot, v, side, s), false),
             _ => {
                 let word = self.stored_word(&slot, slot.bit);
@@ -517,6 +577,9 @@ impl<W: Words> LrLayout for ZipperTables<W> {
         let symbol = group_symbol(group, slot % 32);
         if symbol < DELTAS {
             return self.before_t2(v, side, group);
+        }
+        if symbol == NEXT_NEXT_OR_NULL && self.four_sides != 0 {
+            return self.is_four(&self.slot(v, side)) && self.before_t2(v, side, group);
         }
         if symbol < EXCEPTION {
             return false;

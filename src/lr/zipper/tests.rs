@@ -58,6 +58,7 @@ fn counting<'a>(
         short_heads: z.short_heads,
         compact: z.compact,
         packed_lists: z.packed_lists,
+        four_sides: z.four_sides,
         inner_ring_starts: z.inner_ring_starts,
         ring_blocks_flag: z.ring_blocks_flag,
     }

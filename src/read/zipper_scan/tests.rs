@@ -188,8 +188,9 @@ fn block_is_clear(t: &super::Tables, block: usize) -> bool {
         chained[bit] = t.tip(first + bit as u32 / 2, bit % 2);
     }
     let n = super::Neighbours::of_block(t, first, used, &slot);
-    super::chains_clear(t, &slot, block, &chained, &n, t.m)
-        || super::runs_clear(t, &slot, block, &chained, &n.nn(t)[..used], t.m)
+    let fours = t.block_fours(&slot);
+    super::chains_clear(t, (&slot, fours), block, &chained, &n, t.m)
+        || super::runs_clear(t, (&slot, fours), block, &chained, &n.nn(t)[..used], t.m)
 }
 
 /// `pack_bits` is the inverse of spreading bits over bytes, on random patterns.
