@@ -206,7 +206,16 @@ fn v56_zipr_counts() {
     let at = section_at(&bytes, Tag::ZIPR);
     let field = |f: usize, x: u32| forge(&bytes, Tag::ZIPR, |p| put(p, f, x));
     breaks(&field(0, 24), 56, "ZIPR", at, "section MESH says 25");
-    breaks(&field(32, 256), 56, "ZIPR", at + 32, "unknown flag bits");
+    breaks(&field(32, 1024), 56, "ZIPR", at + 32, "unknown flag bits");
+    // ROW_RECORDS and IMPLIED_WARTS only change bit fields: not without PACKED_LISTS.
+    let words = vector("torus_with_t0.zipper-1.9.lrm");
+    let at9 = section_at(&words, Tag::ZIPR);
+    let (_, flags9) = zipr_flags(&words);
+    assert_eq!(flags9 & 8, 0);
+    for flag in [256, 512] {
+        let bad = with_zipr_flags(&words, flags9 | flag);
+        breaks(&bad, 56, "ZIPR", at9 + 32, "without PACKED_LISTS");
+    }
     // INNER_RING_STARTS cleared: the counts then call for two more ring-start words.
     let flags = u32::from_le_bytes(payload(&bytes, Tag::ZIPR)[32..36].try_into().unwrap());
     assert_ne!(flags & 16, 0);
@@ -283,8 +292,15 @@ fn v56_compact_header() {
         );
     }
     let (_, flags) = zipr_flags(&bytes);
-    // SHORT_HEADS has no meaning in the compact form; bits 8 to 30 are 0.
-    for bad_flags in [flags | 4, flags | 256, flags | 1 << 30] {
+    // ROW_RECORDS or IMPLIED_WARTS cleared: fields one or more bits wider, so the length
+    // no longer fits, or where the padding absorbs it, the words read otherwise break [V58].
+    for flag in [256, 512] {
+        assert_eq!(flags & flag, flag);
+        let rule = format_error(&with_zipr_flags(&bytes, flags & !flag)).rule;
+        assert!(matches!(rule, Rule(56) | Rule(58)), "{flag}: {rule:?}");
+    }
+    // SHORT_HEADS has no meaning in the compact form; bits 10 to 30 are 0.
+    for bad_flags in [flags | 4, flags | 1024, flags | 1 << 30] {
         breaks(
             &with_zipr_flags(&bytes, bad_flags),
             56,
@@ -391,6 +407,30 @@ fn v57_zipr_rings() {
     }
 }
 
+/// [V58] with `ROW_RECORDS` (version 1.15): a record's second word names a T0 row below
+/// `n0` (its field's top bit clear) or is a pair's index; a row past the last breaks the
+/// rule, any row of the file keeps it well formed (`open` answers every operator in range)
+/// and verification finds the corners it gives wrong.
+#[test]
+fn v58_row_records() {
+    // n0 = 3, no pairs: record word 1 is 1 + 2 bits, a row 0 to 3.
+    let bytes = vector("torus_with_t0.zipper.lrm");
+    let header = ZiprHeader::read(&payload(&bytes, Tag::ZIPR));
+    assert_ne!(header.flags & 256, 0);
+    assert_eq!((header.t0, header.pairs), (3, 0));
+    assert_eq!(zipr_width(&bytes, RECORDS, 1), 3);
+    field_breaks(&bytes, RECORDS, 1, 3, 58, "stores no valid opposite");
+    let row = zipr_get(&bytes, RECORDS, 1);
+    assert!(row < 3);
+    let mut refused = 0;
+    for other in (0..3).filter(|&r| r != row) {
+        let bad = zipr_set(&bytes, RECORDS, 1, other);
+        lrmesh::fuzz_checks::walk_in_range(&open(&bad, &Limits::default()).unwrap());
+        refused += open_verified(&bad, &Limits::default()).is_err() as usize;
+    }
+    assert!(refused > 0, "another row gave the same corners");
+}
+
 /// [V58] Heads, symbols, exception and record words, tips.
 #[test]
 fn v58_symbols_and_heads() {
@@ -425,19 +465,28 @@ fn v58_symbols_and_heads() {
     for word in [x | 1 << 31, 25, 0x3FFF_FFFF] {
         field_breaks(&old, EXCEPTIONS, 0, word, 58, "WART flag and a vertex");
     }
+    // With the WART flag in the field (version 1.14), and without (IMPLIED_WARTS, 5 bits).
+    let old14 = vector("torus_with_t0.zipper-1.14.lrm");
+    assert_eq!(zipr_width(&old14, EXCEPTIONS, 0), 6);
     for field in [25, 31, 1 << 5 | 30] {
+        field_breaks(&old14, EXCEPTIONS, 0, field, 58, "WART flag and a vertex");
+    }
+    assert_eq!(zipr_width(&bytes, EXCEPTIONS, 0), 5);
+    for field in [25, 31] {
         field_breaks(&bytes, EXCEPTIONS, 0, field, 58, "WART flag and a vertex");
     }
     // Record word 0 likewise; word 1: each state with a value it does not allow (packed:
-    // the state in the top two bits of a 6-bit field, values below 4 n0 = 12).
+    // the state in the top two bits of a 6-bit field, values below 4 n0 = 12; with
+    // ROW_RECORDS, v58_row_records).
     field_breaks(&old, RECORDS, 0, 1 << 31, 58, "WART flag and a vertex");
+    field_breaks(&old14, RECORDS, 0, 27, 58, "WART flag and a vertex");
     field_breaks(&bytes, RECORDS, 0, 27, 58, "WART flag and a vertex");
     for state_word in [1, 1 << 30 | 16, 1 << 30 | 3, 3 << 30 | 1] {
         field_breaks(&old, RECORDS, 1, state_word, 58, "no valid opposite");
     }
-    assert_eq!(zipr_width(&bytes, RECORDS, 1), 6);
+    assert_eq!(zipr_width(&old14, RECORDS, 1), 6);
     for state_field in [1, 1 << 4 | 12, 1 << 4 | 3, 3 << 4 | 1] {
-        field_breaks(&bytes, RECORDS, 1, state_field, 58, "no valid opposite");
+        field_breaks(&old14, RECORDS, 1, state_field, 58, "no valid opposite");
     }
     // A delta tip out of range: the left anchor's offset from vertex 0 made negative (in
     // the 1.12 file, and with the compact vector's anchors rewritten 16 bits wide).
@@ -677,11 +726,12 @@ fn v58_superblock_counts() {
 #[test]
 fn layout_flags_cleared() {
     let old = vector("torus_with_t0.zipper-1.12.lrm");
+    let old14 = vector("torus_with_t0.zipper-1.14.lrm");
     let bytes = vector("torus_with_t0.zipper.lrm");
     for (file, flag, name) in [
         (&old, 4, "SHORT_HEADS"),
         (&old, 8, "PACKED_LISTS"),
-        (&bytes, 8, "PACKED_LISTS"),
+        (&old14, 8, "PACKED_LISTS"),
     ] {
         let (_, flags) = zipr_flags(file);
         assert_eq!(flags & flag, flag, "the vector sets {name}");

@@ -490,6 +490,18 @@ pub const ZIPPER_LEFT_FOURS: u32 = 64;
 /// right slot is `NULL` (a mesh without a border edge on the ring).
 pub const ZIPPER_RIGHT_FOURS: u32 = 128;
 
+/// `ZIPR` flag (FORMAT.md §3.5e.5, version 1.15; with `PACKED_LISTS` only): a record's
+/// second word is a T0 row (state 1), the T0 corner found in it by the slot's edges, or a
+/// pair's index (state 3), in `1 + bits(max(n0, P) − 1)` bits instead of a state of two bits
+/// and a T0 corner's offset (`4 n0` values).
+pub const ZIPPER_ROW_RECORDS: u32 = 256;
+
+/// `ZIPR` flag (FORMAT.md §3.5e.5, version 1.15; with `PACKED_LISTS` only): exception words
+/// and records' first words hold the tip alone; the WART flag of such a slot is that the next
+/// slot of its side has symbol 4 and the tip is not `v.n.n` (a wart's far vertex skips a
+/// T2's tip; a redundant copy's tip is it), one bit less in each.
+pub const ZIPPER_IMPLIED_WARTS: u32 = 512;
+
 impl ZiprHeader {
     /// Bytes of the header.
     pub const LEN: usize = 40;
@@ -701,7 +713,7 @@ impl ZiprHeader {
     /// fields as wide as the counts call for.
     pub fn list_fields(&self) -> [[crate::lr::zipper::Field; 2]; 7] {
         crate::lr::zipper::list_fields(
-            self.flags & ZIPPER_PACKED_LISTS != 0,
+            self.flags,
             self.m,
             self.m_r,
             self.t0,

@@ -9,9 +9,9 @@ use super::Sections;
 use crate::corner_table::NONE;
 use crate::error::{Result, Rule};
 use crate::format::layout::{
-    ZiprHeader, LR_BOUNDARIES_ON_RING, ZIPPER_INNER_RING_STARTS, ZIPPER_LEFT_FOURS,
-    ZIPPER_PACKED_LISTS, ZIPPER_RIGHT_FOURS, ZIPPER_RING_BLOCKS, ZIPPER_SHORT_HEADS,
-    ZIPPER_WART_DELTAS,
+    ZiprHeader, LR_BOUNDARIES_ON_RING, ZIPPER_IMPLIED_WARTS, ZIPPER_INNER_RING_STARTS,
+    ZIPPER_LEFT_FOURS, ZIPPER_PACKED_LISTS, ZIPPER_RIGHT_FOURS, ZIPPER_RING_BLOCKS,
+    ZIPPER_ROW_RECORDS, ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
 };
 use crate::format::Tag;
 use crate::ids::Corner;
@@ -57,12 +57,24 @@ pub(super) fn zipper_tables<'a>(
         | ZIPPER_INNER_RING_STARTS
         | ZIPPER_RING_BLOCKS
         | ZIPPER_LEFT_FOURS
-        | ZIPPER_RIGHT_FOURS;
+        | ZIPPER_RIGHT_FOURS
+        | ZIPPER_ROW_RECORDS
+        | ZIPPER_IMPLIED_WARTS;
     if h.flags & !known != 0 || h.reserved != 0 {
         return Err(f.err(
             if compact { 0 } else { 32 },
             Rule(56),
             "unknown flag bits or reserved bits are set",
+        ));
+    }
+    // Their fields only exist as bit fields.
+    if h.flags & (ZIPPER_ROW_RECORDS | ZIPPER_IMPLIED_WARTS) != 0
+        && h.flags & ZIPPER_PACKED_LISTS == 0
+    {
+        return Err(f.err(
+            if compact { 0 } else { 32 },
+            Rule(56),
+            "ROW_RECORDS or IMPLIED_WARTS without PACKED_LISTS",
         ));
     }
     if m >= NULL {
@@ -257,6 +269,8 @@ pub(super) fn zipper_tables<'a>(
             h.flags & ZIPPER_LEFT_FOURS != 0,
             h.flags & ZIPPER_RIGHT_FOURS != 0,
         ),
+        row_records: h.flags & ZIPPER_ROW_RECORDS != 0,
+        implied_warts: h.flags & ZIPPER_IMPLIED_WARTS != 0,
     };
     debug_assert_eq!(tables.planes.count(), plane_array_words(m_r));
 
@@ -348,8 +362,10 @@ pub(super) fn zipper_tables<'a>(
             ));
         }
     }
+    // With ROW_RECORDS a record names a row ([V58]), whose corners are all T0 corners.
+    let offsets = !tables.row_records;
     let stored = tables.records.iter().skip(1).step_by(RECORD_WORDS);
-    for (r, word) in stored.enumerate() {
+    for (r, word) in stored.enumerate().filter(|_| offsets) {
         let state = word >> STATE_SHIFT;
         if (state == STORES_FIRST || state == STORES_SECOND)
             && !corner_ok((8 * m_r).wrapping_add(word & ((1 << STATE_SHIFT) - 1)))
@@ -530,6 +546,9 @@ fn check_slots(
                         let second = t.records.at(at + 1);
                         let value = second & ((1 << STATE_SHIFT) - 1);
                         let ok = match second >> STATE_SHIFT {
+                            // ROW_RECORDS: a T0 row or a pair.
+                            STORES_FIRST if t.row_records => (value as u64) < n0,
+                            STORES_NONE | STORES_SECOND if t.row_records => false,
                             STORES_NONE => value == 0,
                             STORES_FIRST | STORES_SECOND => {
                                 (value as u64) < 4 * n0 && value % 4 != 3
@@ -552,7 +571,11 @@ fn check_slots(
                             ));
                         }
                     }
-                    wart = (word & WART != 0) as u32;
+                    // With IMPLIED_WARTS: before a canonical T2, and not its redundant copy.
+                    wart = match t.implied_warts {
+                        true => next_symbol == PREVIOUS && word & VALUE != t.ring_next(next),
+                        false => word & WART != 0,
+                    } as u32;
                     chain[side] = word & VALUE;
                     chain[side]
                 }

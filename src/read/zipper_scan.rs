@@ -82,6 +82,9 @@ fn words_hold(t: &Tables, m: u32, exceptions: &[u32], records: &[u32]) -> bool {
         let (first, second) = (record[0], record[1]);
         let value = second & ((1 << STATE_SHIFT) - 1);
         let second_holds = match second >> STATE_SHIFT {
+            // ROW_RECORDS: a T0 row or a pair.
+            STORES_FIRST if t.row_records => (value as u64) < n0,
+            STORES_NONE | STORES_SECOND if t.row_records => false,
             STORES_NONE => value == 0,
             STORES_FIRST | STORES_SECOND => (value as u64) < 4 * n0 && value % 4 != 3,
             STORES_BOTH => {
@@ -377,8 +380,17 @@ pub(super) fn scan_slots(t: &Tables) -> Option<(SlotBits, u64)> {
             take(bit, record(records));
             records += 1;
         }
-        let stored_wart = wart_halves[0] as u128 | (wart_halves[1] as u128) << 64;
         let n = Neighbours::of_block(t, first, used, &slot);
+        let stored_wart = match t.implied_warts {
+            false => wart_halves[0] as u128 | (wart_halves[1] as u128) << 64,
+            // IMPLIED_WARTS: a stored slot before a canonical T2 whose tip is not `v.n.n`
+            // (a few in a thousand slots are before one).
+            true => Bits128(stored & n.next_is_t2).fold(0, |warts, bit| {
+                let v = first + bit as u32 / 2;
+                let wart = chained[bit] != t.ring_next(t.ring_next(v));
+                warts | (wart as u128) << bit
+            }),
+        };
         let [p0, p1, p2] = slot.p;
         let fours = t.block_fours(&slot);
         let (delta, rule_5, irregular) = (!p2 | fours, p0 & !p1 & p2 & !fours, slot.irregular());

@@ -6,9 +6,9 @@ use crate::edgebreaker;
 use crate::error::Result;
 use crate::format::layout::{
     write_fields, CompactZipr, Layout, LrbeHeader, LrtbHeader, StrpHeader, ZiprHeader,
-    LRBE_TIP_BASES, LR_BOUNDARIES_ON_RING, ZIPPER_INNER_RING_STARTS, ZIPPER_LEFT_FOURS,
-    ZIPPER_PACKED_LISTS, ZIPPER_RIGHT_FOURS, ZIPPER_RING_BLOCKS, ZIPPER_SHORT_HEADS,
-    ZIPPER_WART_DELTAS,
+    LRBE_TIP_BASES, LR_BOUNDARIES_ON_RING, ZIPPER_IMPLIED_WARTS, ZIPPER_INNER_RING_STARTS,
+    ZIPPER_LEFT_FOURS, ZIPPER_PACKED_LISTS, ZIPPER_RIGHT_FOURS, ZIPPER_RING_BLOCKS,
+    ZIPPER_ROW_RECORDS, ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
 };
 use crate::format::{Kind, Tag};
 use crate::ids::{Triangle, Vertex};
@@ -288,7 +288,17 @@ pub(crate) fn zipper_header(z: &Zipper) -> ZiprHeader {
                 0
             }
             | if t.fours()[0] { ZIPPER_LEFT_FOURS } else { 0 }
-            | if t.fours()[1] { ZIPPER_RIGHT_FOURS } else { 0 },
+            | if t.fours()[1] { ZIPPER_RIGHT_FOURS } else { 0 }
+            | if t.row_records_and_implied_warts()[0] {
+                ZIPPER_ROW_RECORDS
+            } else {
+                0
+            }
+            | if t.row_records_and_implied_warts()[1] {
+                ZIPPER_IMPLIED_WARTS
+            } else {
+                0
+            },
         reserved: 0,
         compact: t.compact.then(|| CompactZipr {
             count_bytes: count_bytes(&t.header_counts()),

@@ -3,7 +3,9 @@
 //! with the standard LR's.
 
 use super::packed::{list_fields, ring_block_field, Field, FieldKind, Packed};
-use super::tables::{four_sides, last_vertex_bits, plane_array_words, Slot, ZipperTables};
+use super::tables::{
+    four_sides, last_vertex_bits, plane_array_words, row_corner, slot_edges, Slot, ZipperTables,
+};
 use super::{
     below, BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, COMPACT_SUPER_SHIFT, DELTAS, EXCEPTION,
     EXPLICIT, EXPLICIT_SHIFT, FOUR, IRREGULAR_SLOT, LEFT_SLOTS, NEXT_NEXT_OR_NULL, NO_OPPOSITE,
@@ -11,8 +13,9 @@ use super::{
 };
 use crate::corner_table::NONE;
 use crate::error::{Error, Result};
+use crate::format::layout::{ZIPPER_IMPLIED_WARTS, ZIPPER_PACKED_LISTS, ZIPPER_ROW_RECORDS};
 use crate::lr::read_back::opposite;
-use crate::lr::tables::{LrLayout, LrTables, IRREGULAR, LEFT, NULL, RIGHT, WART};
+use crate::lr::tables::{LrLayout, LrTables, IRREGULAR, LEFT, NULL, RIGHT, VALUE, WART};
 
 /// Whether slot `(v, side)` of `t` is a canonical T2 (symbol [`PREVIOUS`]).
 fn is_canonical_t2(t: &LrTables<Vec<u32>>, v: u32, side: usize) -> bool {
@@ -83,12 +86,14 @@ fn symbol(
 }
 
 /// Record word 1 of irregular slot `(v, side)`: the opposites the ring rules cannot infer
-/// (pushing both to `pairs` when one is not enough).
+/// (pushing both to `pairs` when one is not enough). With `ROW_RECORDS` a single T0 corner
+/// is stored as its row, when the decoder finds that corner in the row by the slot's edges
+/// (FORMAT.md §3.5e.5); a pair otherwise.
 fn stored_opposites(
     t: &LrTables<Vec<u32>>,
-    v: u32,
-    side: usize,
+    (v, side): (u32, usize),
     pairs: &mut Vec<u32>,
+    row_records: bool,
 ) -> Result<u32> {
     let stored = [0, 1].map(|k| t.stored_opposite(v, side, k).unwrap_or(NONE));
     let needed =
@@ -96,7 +101,26 @@ fn stored_opposites(
     let t0_offset = |c: u32| {
         (c != NONE && c >= 8 * t.m_r && c - 8 * t.m_r < 1 << STATE_SHIFT).then(|| c - 8 * t.m_r)
     };
+    // With ROW_RECORDS: the row of T0 corner `c`, if the decoder finds `c` for corner `k`.
+    let row_of = |k: usize, c: u32| {
+        let offset = c - 8 * t.m_r;
+        let (row, i) = (offset / 4, offset % 4);
+        let edges = slot_edges(v, side, t.tip(v, side), t.far(v, side));
+        let vertices = [0, 1, 2].map(|i| t.vo_v[3 * row as usize + i]);
+        (row_corner(edges, vertices) == Some((k, i))).then_some(STORES_FIRST << STATE_SHIFT | row)
+    };
     let word = match needed {
+        _ if row_records => {
+            let single = match needed {
+                [true, false] => t0_offset(stored[0]).and_then(|_| row_of(0, stored[0])),
+                [false, true] => t0_offset(stored[1]).and_then(|_| row_of(1, stored[1])),
+                _ => None,
+            };
+            match single {
+                Some(word) => word,
+                None => push_pair(pairs, stored)?,
+            }
+        }
         [false, false] => STORES_NONE << STATE_SHIFT,
         [true, false] if t0_offset(stored[0]).is_some() => {
             STORES_FIRST << STATE_SHIFT | t0_offset(stored[0]).unwrap_or(0)
@@ -104,18 +128,21 @@ fn stored_opposites(
         [false, true] if t0_offset(stored[1]).is_some() => {
             STORES_SECOND << STATE_SHIFT | t0_offset(stored[1]).unwrap_or(0)
         }
-        _ => {
-            let index = pairs.len() as u32 / 2;
-            if index >= 1 << STATE_SHIFT {
-                return Err(Error::Unsupported(
-                    "zipper: more than 2^30 opposite pairs".into(),
-                ));
-            }
-            pairs.extend(stored);
-            STORES_BOTH << STATE_SHIFT | index
-        }
+        _ => push_pair(pairs, stored)?,
     };
     Ok(word)
+}
+
+/// Record word 1 storing both opposites in `pairs`.
+fn push_pair(pairs: &mut Vec<u32>, stored: [u32; 2]) -> Result<u32> {
+    let index = pairs.len() as u32 / 2;
+    if index >= 1 << STATE_SHIFT {
+        return Err(Error::Unsupported(
+            "zipper: more than 2^30 opposite pairs".into(),
+        ));
+    }
+    pairs.extend(stored);
+    Ok(STORES_BOTH << STATE_SHIFT | index)
 }
 
 /// The Zipper tables of a standard LR (the same ids and flags), in the compact form. Each
@@ -139,6 +166,7 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
     // Whether some slot needs the WART_DELTAS reading: only then is the flag set (and the
     // file version 1.8).
     let mut wart_deltas = false;
+    let mut implied_warts = true;
     // Fours on the left always; on the right when no right slot is NULL, for symbol 5 stands
     // for NULL there otherwise.
     let sides = four_sides(true, (0..m_r).all(|v| t.tip(v, RIGHT) != NULL));
@@ -169,11 +197,16 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
                 let four = s == NEXT_NEXT_OR_NULL && fours == Some(false);
                 let right_rule_5 = s == NEXT_NEXT_OR_NULL && side != LEFT && fours.is_none();
                 wart_deltas |= before_t2 && (s < DELTAS || four || right_rule_5);
+                if let Some(word) = word {
+                    // IMPLIED_WARTS holds when every stored slot's flag is what it implies.
+                    let next_next = t.ring_next(t.ring_next(v));
+                    implied_warts &= (word & WART != 0) == (before_t2 && word & VALUE != next_next);
+                }
                 match s {
                     EXCEPTION => exceptions.extend(word),
                     IRREGULAR_SLOT => {
                         records.extend(word);
-                        records.push(stored_opposites(t, v, side, &mut pairs)?);
+                        records.push(stored_opposites(t, (v, side), &mut pairs, true)?);
                     }
                     _ => {}
                 }
@@ -240,8 +273,24 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
     let ring_blocks = Packed::pack(&ring_blocks, [ring_block_field(rings); 2])
         .ok_or_else(|| Error::Internal("zipper: a ring index wider than its field".into()))?;
     // Every list in as many bits as the counts call for (PACKED_LISTS).
+    let flags = ZIPPER_PACKED_LISTS
+        | ZIPPER_ROW_RECORDS
+        | if implied_warts {
+            ZIPPER_IMPLIED_WARTS
+        } else {
+            0
+        };
+    if implied_warts {
+        // The tips alone: the readers imply the flags.
+        for word in exceptions
+            .iter_mut()
+            .chain(records.iter_mut().step_by(RECORD_WORDS))
+        {
+            *word &= VALUE;
+        }
+    }
     let fields = list_fields(
-        true,
+        flags,
         t.m,
         m_r,
         n0,
@@ -306,6 +355,8 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
         inner_ring_starts: true,
         ring_blocks_flag: true,
         four_sides: sides,
+        row_records: true,
+        implied_warts,
     };
     same_as_standard(&z, t)?;
     Ok(z)

@@ -7,7 +7,7 @@
 use super::tables::ZipperTables;
 use super::{BLOCK_SHIFT, DELTAS, FOUR, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PREVIOUS, RECORD_WORDS};
 use crate::lr::read_back::{push_slot, with_slots};
-use crate::lr::tables::{LrTables, LEFT, RIGHT, VALUE, WART};
+use crate::lr::tables::{LrTables, LEFT, RIGHT, VALUE};
 use crate::words::Words;
 
 impl<W: Words> ZipperTables<W> {
@@ -58,7 +58,8 @@ impl<W: Words> ZipperTables<W> {
                             };
                             (r, x) = (r + irregular as usize, x + !irregular as usize);
                             chain[side] = word & VALUE;
-                            (word & VALUE, word & WART != 0, irregular)
+                            let wart = self.stored_slot_wart(v, side, word, slot.group());
+                            (word & VALUE, wart, irregular)
                         }
                     };
                     f((v, side), read);

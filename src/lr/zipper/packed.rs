@@ -24,6 +24,9 @@ pub enum FieldKind {
     /// A two's complement number of the field's width, as a 32-bit two's complement word
     /// (a compact head's anchor offset, FORMAT.md §3.5e.3); width 0 is the value 0.
     Signed,
+    /// A record's second word with `ROW_RECORDS` (FORMAT.md §3.5e.5): the field's top bit
+    /// set for state 3 (a pair), clear for state 1 (a T0 row), the value below.
+    RowOrPair,
 }
 
 /// One field: its width in bits (0 to 32) and kind.
@@ -62,6 +65,10 @@ impl Field {
                     .checked_shr(shift)
                     .unwrap_or(0) as u32
             }
+            FieldKind::RowOrPair => {
+                let top = self.width as u32 - 1;
+                (f & low_bits(top)) | (1 | (f >> top & 1) << 1) << 30
+            }
         }
     }
 
@@ -91,6 +98,13 @@ impl Field {
                 }
                 f
             }
+            FieldKind::RowOrPair => {
+                let top = self.width as u32 - 1;
+                if word & low_bits(30) > low_bits(top) || word >> 30 & 1 == 0 {
+                    return None;
+                }
+                (word & low_bits(30)) | (word >> 31) << top
+            }
         };
         (f <= low_bits(self.width as u32)).then_some(f)
     }
@@ -109,18 +123,21 @@ fn bits(x: u64) -> u32 {
 
 /// The fields of the seven lists, in file order: `EXCEPTIONS`, `RECORDS` (word 0, word 1),
 /// `PAIRS`, `T0_V`, `T0_CODES`, `EXPLICIT`, `C`; each pair gives the fields of even and odd
-/// elements. Words of 32 bits without `PACKED_LISTS`; with it, from the header's counts
-/// (FORMAT.md §3.5e): `m` vertices, `m_r` ring vertices, `n0` T0 rows, `pairs` opposite
-/// pairs, `explicit` explicit T0 opposites.
+/// elements. Words of 32 bits without the header's flag `PACKED_LISTS` (in `flags`); with
+/// it, from the header's counts (FORMAT.md §3.5e): `m` vertices, `m_r` ring vertices, `n0`
+/// T0 rows, `pairs` opposite pairs, `explicit` explicit T0 opposites, and with
+/// `ROW_RECORDS` (version 1.15) a record's second word a T0 row or a pair's index and a
+/// bit, with `IMPLIED_WARTS` a tip without the WART flag.
 pub fn list_fields(
-    packed: bool,
+    flags: u32,
     m: u32,
     m_r: u32,
     n0: u32,
     pairs: u32,
     explicit: u32,
 ) -> [[Field; 2]; 7] {
-    if !packed {
+    use crate::format::layout::{ZIPPER_IMPLIED_WARTS, ZIPPER_PACKED_LISTS, ZIPPER_ROW_RECORDS};
+    if flags & ZIPPER_PACKED_LISTS == 0 {
         return [[Field::WORD; 2]; 7];
     }
     let field = |width: u32, kind| Field {
@@ -128,13 +145,24 @@ pub fn list_fields(
         kind,
     };
     let vertex = bits((m as u64).saturating_sub(1)).min(30);
-    let flagged = field(vertex + 1, FieldKind::Flagged);
+    let flagged = match flags & ZIPPER_IMPLIED_WARTS != 0 {
+        true => field(vertex, FieldKind::Plain),
+        false => field(vertex + 1, FieldKind::Flagged),
+    };
     let corner = field(
         bits(8 * m_r as u64 + 4 * n0 as u64).min(32),
         FieldKind::Corner,
     );
-    let values = (4 * n0 as u64).max(pairs as u64).saturating_sub(1);
-    let stated = field(2 + bits(values).min(30), FieldKind::Stated);
+    let stated = match flags & ZIPPER_ROW_RECORDS != 0 {
+        true => {
+            let values = (n0 as u64).max(pairs as u64).saturating_sub(1);
+            field(1 + bits(values).min(30), FieldKind::RowOrPair)
+        }
+        false => {
+            let values = (4 * n0 as u64).max(pairs as u64).saturating_sub(1);
+            field(2 + bits(values).min(30), FieldKind::Stated)
+        }
+    };
     let codes = field(6 + bits(explicit as u64).min(26), FieldKind::Plain);
     let vertex = field(vertex, FieldKind::Plain);
     [
@@ -302,10 +330,11 @@ impl<W: Words> Words for Packed<W> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::format::layout::ZIPPER_PACKED_LISTS as P;
 
     #[test]
     fn packed_lists_give_back_their_words() {
-        let lists = list_fields(true, 5000, 4800, 300, 7, 20);
+        let lists = list_fields(P, 5000, 4800, 300, 7, 20);
         let samples: [Vec<u32>; 7] = [
             vec![0, 4999, 4999 | 1 << 30, 17],
             vec![4999 | 1 << 30, 3 << 30 | 6, 12, 1 << 30 | 1199, 0, 0],
@@ -327,19 +356,19 @@ mod tests {
     #[test]
     fn widths_follow_the_counts() {
         let [exceptions, records, pairs, t0_v, codes, explicit, c] =
-            list_fields(true, 5000, 4800, 300, 7, 20);
+            list_fields(P, 5000, 4800, 300, 7, 20);
         assert_eq!(exceptions[0].width, 14);
         assert_eq!(records.map(|f| f.width), [14, 2 + 11]);
         assert_eq!(pairs[0].width, 16);
         assert_eq!(t0_v[0].width, 13);
         assert_eq!(codes[0].width, 6 + 5);
         assert_eq!([explicit[0].width, c[0].width], [16, 16]);
-        assert_eq!(list_fields(false, 5, 4, 0, 0, 0), [[Field::WORD; 2]; 7]);
+        assert_eq!(list_fields(0, 5, 4, 0, 0, 0), [[Field::WORD; 2]; 7]);
     }
 
     #[test]
     fn words_that_do_not_fit_are_refused() {
-        let [exceptions, records, ..] = list_fields(true, 16, 16, 1, 0, 0);
+        let [exceptions, records, ..] = list_fields(P, 16, 16, 1, 0, 0);
         assert!(Packed::pack(&[16], exceptions).is_none());
         assert!(Packed::pack(&[1 << 31], exceptions).is_none());
         assert!(Packed::pack(&[0, 1 << 30 | 4], records).is_none());
@@ -348,7 +377,7 @@ mod tests {
 
     #[test]
     fn nonzero_padding_is_seen() {
-        let [exceptions, ..] = list_fields(true, 16, 16, 1, 0, 0);
+        let [exceptions, ..] = list_fields(P, 16, 16, 1, 0, 0);
         let mut packed = Packed::pack(&[3, 5], exceptions).unwrap();
         packed.words[0] |= 1 << 20;
         assert!(!packed.padding_is_zero());

@@ -79,6 +79,10 @@ pub struct ZipperTables<W> {
     /// The slots of the sides whose symbol 5 may be a four (a delta of 4): the left ones
     /// with the header's `LEFT_FOURS` flag, the right ones with `RIGHT_FOURS`.
     pub(crate) four_sides: u128,
+    /// The header's `ROW_RECORDS` flag: a record of state 1 names a T0 row.
+    pub(crate) row_records: bool,
+    /// The header's `IMPLIED_WARTS` flag: stored words hold no WART flag.
+    pub(crate) implied_warts: bool,
 }
 
 /// The symbol planes of one block and where a slot lies in them.
@@ -147,6 +151,26 @@ fn plane_bit(p: u128, bit: u32) -> u32 {
 #[inline]
 fn group_symbol(g: [u32; 3], b: usize) -> u32 {
     (g[0] >> b) & 1 | ((g[1] >> b) & 1) << 1 | ((g[2] >> b) & 1) << 2
+}
+
+/// The edges that the transversal corners of slot `(v, side)` face, corner 0 (`8v + 0` or
+/// `8v + 4`) then 1 (`8v + 2` or `8v + 6`), for its tip and far vertex: the left triangle is
+/// `(v, tip, far)`, the right `(far, tip, v)`.
+pub(crate) fn slot_edges(v: u32, side: usize, tip: u32, far: u32) -> [[u32; 2]; 2] {
+    match side {
+        LEFT => [[tip, far], [v, tip]],
+        _ => [[tip, v], [far, tip]],
+    }
+}
+
+/// The first of `edges` (by index `k`) whose two ends are both vertices of the T0 row
+/// `row`, with the row's corner `i` at its third vertex (FORMAT.md §3.5e.5).
+pub(crate) fn row_corner(edges: [[u32; 2]; 2], row: [u32; 3]) -> Option<(usize, u32)> {
+    edges.iter().enumerate().find_map(|(k, &[x, y])| {
+        let third = (0..3).find(|&i| row[i as usize] != x && row[i as usize] != y)?;
+        let ends = row.iter().filter(|&&w| w == x || w == y).count();
+        (x != y && ends == 2 && row.contains(&x) && row.contains(&y)).then_some((k, third))
+    })
 }
 
 /// The slots whose symbol 5 may be a four: the left ones with `LEFT_FOURS`, the right ones
@@ -339,9 +363,13 @@ impl<W: Words> ZipperTables<W> {
     /// the next slot lies unless `v` ends its ring or the slot ends the group.
     #[inline(always)]
     pub(crate) fn before_t2(&self, v: u32, side: usize, group: [u32; 3]) -> bool {
-        if !self.wart_deltas {
-            return false;
-        }
+        self.wart_deltas && self.next_is_t2(v, side, group)
+    }
+
+    /// Whether the next slot of `(v, side)`'s side has symbol 4 (a canonical T2), `group`
+    /// as for [`before_t2`](Self::before_t2).
+    #[inline(always)]
+    pub(crate) fn next_is_t2(&self, v: u32, side: usize, group: [u32; 3]) -> bool {
         let next = self.ring_next(v);
         let b = (2 * v as usize + side) % 32;
         let next_symbol = if next == v + 1 && b < 30 {
@@ -350,6 +378,43 @@ impl<W: Words> ZipperTables<W> {
             self.symbol(next, side)
         };
         next_symbol == PREVIOUS
+    }
+
+    /// The WART flag of exception or irregular slot `(v, side)` whose word is `word`: the
+    /// word's flag, or with `IMPLIED_WARTS` whether the next slot of its side has symbol 4
+    /// and its tip is not `v.n.n` (FORMAT.md §3.5e.5).
+    #[inline(always)]
+    pub(crate) fn stored_slot_wart(&self, v: u32, side: usize, word: u32, group: [u32; 3]) -> bool {
+        match self.implied_warts {
+            false => word & WART != 0,
+            true => {
+                self.next_is_t2(v, side, group) && word & VALUE != self.ring_next(self.ring_next(v))
+            }
+        }
+    }
+
+    /// With `ROW_RECORDS`, the opposite of transversal corner `second` of irregular slot
+    /// `(v, side)`, the `r`-th, whose record names T0 row `row` (FORMAT.md §3.5e.5): the
+    /// row's corner across the edge that corner faces, when that edge is the first of the
+    /// slot's two whose ends are both in the row; `None` (the ring rules' answer) otherwise.
+    #[inline(always)]
+    fn row_opposite(
+        &self,
+        slot: &Slot,
+        (v, side): (u32, usize),
+        r: usize,
+        row: u32,
+        second: usize,
+    ) -> Option<u32> {
+        let word = self.records.at(RECORD_WORDS * r);
+        let tip = word & VALUE;
+        let wart = self.stored_slot_wart(v, side, word, slot.group());
+        let far = self.far_given(v, wart);
+        let vertices = [0, 1, 2].map(|i| self.t0_vertex(3 * row + i));
+        match row_corner(slot_edges(v, side, tip, far), vertices) {
+            Some((k, i)) if k == second => Some((8 * self.m_r).wrapping_add(4 * row + i)),
+            _ => None,
+        }
     }
 
     /// The tip the ring rules give a slot of symbol 4 (`v.p`) or 5 that is not a four
@@ -407,6 +472,11 @@ impl<W: Words> ZipperTables<W> {
     /// Whether the header's `WART_DELTAS` flag is set (version 1.8).
     pub fn wart_deltas(&self) -> bool {
         self.wart_deltas
+    }
+
+    /// Whether the header's `ROW_RECORDS` and `IMPLIED_WARTS` flags are set (version 1.15).
+    pub fn row_records_and_implied_warts(&self) -> [bool; 2] {
+        [self.row_records, self.implied_warts]
     }
 
     /// Whether the header's `LEFT_FOURS` and `RIGHT_FOURS` flags are set (version 1.14).
@@ -566,7 +636,10 @@ impl<W: Words> LrLayout for ZipperTables<W> {
             s @ (PREVIOUS | NEXT_NEXT_OR_NULL) => (self.ring_rule_tip(&slot, v, side, s), false),
             _ => {
                 let word = self.stored_word(&slot, slot.bit);
-                (word & VALUE, word & WART != 0)
+                (
+                    word & VALUE,
+                    self.stored_slot_wart(v, side, word, slot.group()),
+                )
             }
         }
     }
@@ -585,7 +658,8 @@ impl<W: Words> LrLayout for ZipperTables<W> {
             return false;
         }
         let slot = self.slot(v, side);
-        self.stored_word(&slot, slot.bit) & WART != 0
+        let word = self.stored_word(&slot, slot.bit);
+        self.stored_slot_wart(v, side, word, group)
     }
     #[inline]
     fn irregular(&self, v: u32, side: usize) -> bool {
@@ -602,6 +676,9 @@ impl<W: Words> LrLayout for ZipperTables<W> {
         let value = word & ((1 << STATE_SHIFT) - 1);
         match (word >> STATE_SHIFT, second) {
             (STORES_BOTH, _) => Some(self.pairs.at(2 * value as usize + second)),
+            (STORES_FIRST, _) if self.row_records => {
+                self.row_opposite(&slot, (v, side), r, value, second)
+            }
             (STORES_FIRST, 0) | (STORES_SECOND, 1) => Some((8 * self.m_r).wrapping_add(value)),
             _ => None,
         }

@@ -59,6 +59,8 @@ fn counting<'a>(
         compact: z.compact,
         packed_lists: z.packed_lists,
         four_sides: z.four_sides,
+        row_records: z.row_records,
+        implied_warts: z.implied_warts,
         inner_ring_starts: z.inner_ring_starts,
         ring_blocks_flag: z.ring_blocks_flag,
     }
