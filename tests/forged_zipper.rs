@@ -30,6 +30,20 @@ const ANCHORS: usize = 13;
 fn zipr_bits(p: &[u8], index: usize, i: usize) -> (usize, u32) {
     let header = ZiprHeader::read(p);
     let heads = 8 * header.layout().unwrap().arrays[HEADS].start;
+    // JOINED_LISTS: the nine bit lists are one stream from HEADS' start.
+    if let (Some(bits), true) = (header.joined_bits(), index >= HEADS && index != SUPER) {
+        let (anchor, counts) = header.head_fields().unwrap();
+        let (q, fields) = match index {
+            ANCHORS => (0, anchor),
+            HEADS => (1, counts),
+            _ => (
+                2 + index - EXCEPTIONS,
+                header.list_fields()[index - EXCEPTIONS],
+            ),
+        };
+        let bit = lrmesh::lr::zipper::first_bit(fields, i as u64) as usize;
+        return (heads + bits[q] as usize + bit, fields[i % 2].width as u32);
+    }
     if let (HEADS | ANCHORS, Some((anchor, counts))) = (index, header.head_fields()) {
         let (start, fields) = match index {
             ANCHORS => (heads, anchor),
@@ -139,7 +153,12 @@ fn with_header(bytes: &[u8], edit: impl FnOnce(&mut ZiprHeader)) -> Vec<u8> {
 /// `bytes` with the anchors of its compact `ZIPR` rewritten `width` bits wide (the same
 /// values; the writer's are 0 bits wide).
 fn with_anchor_bits(bytes: &[u8], width: u8) -> Vec<u8> {
-    use lrmesh::lr::zipper::{Field, FieldKind, Packed};
+    use lrmesh::lr::zipper::{unjoined_zipr, Field, FieldKind, Packed};
+    // The lists no longer joined (JOINED_LISTS), so that the anchors' list has words of its
+    // own.
+    let unjoined = unjoined_zipr(&payload(bytes, Tag::ZIPR));
+    let joined = unjoined.map(|u| forge(bytes, Tag::ZIPR, |p| *p = u));
+    let bytes = joined.as_deref().unwrap_or(bytes);
     let p = payload(bytes, Tag::ZIPR);
     let header = ZiprHeader::read(&p);
     let n = 2 * header.blocks() as usize;
@@ -206,7 +225,16 @@ fn v56_zipr_counts() {
     let at = section_at(&bytes, Tag::ZIPR);
     let field = |f: usize, x: u32| forge(&bytes, Tag::ZIPR, |p| put(p, f, x));
     breaks(&field(0, 24), 56, "ZIPR", at, "section MESH says 25");
-    breaks(&field(32, 1024), 56, "ZIPR", at + 32, "unknown flag bits");
+    breaks(&field(32, 2048), 56, "ZIPR", at + 32, "unknown flag bits");
+    let (_, flags12) = zipr_flags(&bytes);
+    let joined = with_zipr_flags(&bytes, flags12 | 1024);
+    breaks(
+        &joined,
+        56,
+        "ZIPR",
+        at + 32,
+        "JOINED_LISTS without the compact form",
+    );
     // ROW_RECORDS and IMPLIED_WARTS only change bit fields: not without PACKED_LISTS.
     let words = vector("torus_with_t0.zipper-1.9.lrm");
     let at9 = section_at(&words, Tag::ZIPR);
@@ -299,8 +327,8 @@ fn v56_compact_header() {
         let rule = format_error(&with_zipr_flags(&bytes, flags & !flag)).rule;
         assert!(matches!(rule, Rule(56) | Rule(58)), "{flag}: {rule:?}");
     }
-    // SHORT_HEADS has no meaning in the compact form; bits 10 to 30 are 0.
-    for bad_flags in [flags | 4, flags | 1024, flags | 1 << 30] {
+    // SHORT_HEADS has no meaning in the compact form; bits 11 to 30 are 0.
+    for bad_flags in [flags | 4, flags | 2048, flags | 1 << 30] {
         breaks(
             &with_zipr_flags(&bytes, bad_flags),
             56,
@@ -340,12 +368,13 @@ fn v56_compact_header() {
         assert_eq!(a.summary().triangles, b.summary().triangles);
         lrmesh::fuzz_checks::walk_in_range(&b);
     }
-    // Four blocks: 7-bit anchors (eight fields, 56 bits of two words), 5- and 4-bit counts
-    // (36 bits of two words); a bit set past the last field of either list.
-    let anchored = spheres.clone();
+    // Four blocks (version 1.15, before JOINED_LISTS; one seed's ring): 6-bit anchors
+    // (eight fields, 48 bits of two words), 6- and 5-bit counts (44 bits of two words); a
+    // bit set past the last field of either list.
+    let anchored = vector("four_spheres.zipper-1.15.lrm");
     let h = ZiprHeader::read(&payload(&anchored, Tag::ZIPR));
     let c = h.compact.unwrap();
-    assert_eq!((c.anchor_bits, c.count_bits), (7, [5, 4]));
+    assert_eq!((c.anchor_bits, c.count_bits), (6, [6, 5]));
     let at4 = section_at(&anchored, Tag::ZIPR);
     let heads = h.layout().unwrap().arrays[HEADS];
     for (end, words) in [(heads.start + 8, "anchor"), (heads.end(), "count")] {
@@ -353,6 +382,17 @@ fn v56_compact_header() {
         let message = format!("HEADS: bits past the last {words} field");
         breaks(&bad, 56, "ZIPR", at4 + end as u64 - 4, &message);
     }
+    // JOINED_LISTS: the nine lists are one stream in HEADS, padded only at its end (the last
+    // list's, C's); a bit set past it breaks the rule.
+    let h = ZiprHeader::read(&payload(&spheres, Tag::ZIPR));
+    let end_bit = h.joined_bits().unwrap()[9];
+    assert_ne!(end_bit % 32, 0);
+    let heads = h.layout().unwrap().arrays[HEADS];
+    assert_eq!(heads.end() - heads.start, 4 * end_bit.div_ceil(32) as usize);
+    let bad = forge(&spheres, Tag::ZIPR, |p| p[heads.end() - 1] |= 0x80);
+    let at_spheres = section_at(&spheres, Tag::ZIPR);
+    let end = at_spheres + heads.end() as u64 - 4;
+    breaks(&bad, 56, "ZIPR", end, "C: bits past its last field");
 }
 
 /// [V57] `ZIPR` rings satisfy [V16], the bit vectors only with several rings; with

@@ -137,7 +137,7 @@ fn listing(name: &str, bytes: &[u8]) -> String {
             name,
             z,
             format!(
-                "{n} triangles, {} ring vertices, {} T0 rows, {} exceptions, {} records, {} pairs, {} explicit T0 opposites, boundaries on the ring: {}, wart deltas: {}, short heads: {}, packed lists: {}, inner ring starts: {}, ring blocks: {}, compact: {}, fours: {}, row records: {}, implied warts: {}",
+                "{n} triangles, {} ring vertices, {} T0 rows, {} exceptions, {} records, {} pairs, {} explicit T0 opposites, boundaries on the ring: {}, wart deltas: {}, short heads: {}, packed lists: {}, inner ring starts: {}, ring blocks: {}, compact: {}, fours: {}, row records: {}, implied warts: {}, joined lists: {}",
                 z.ring_vertices(),
                 z.t0_count(),
                 z.exception_count(),
@@ -162,6 +162,7 @@ fn listing(name: &str, bytes: &[u8]) -> String {
                 },
                 z.row_records_and_implied_warts()[0],
                 z.row_records_and_implied_warts()[1],
+                z.joined_lists(),
             ),
         ),
         View::Strips(strips) => corner_listing(
@@ -487,42 +488,43 @@ fn vectors_match() {
 /// (every ring start stored, ring-end bits, before `INNER_RING_STARTS` and `RING_BLOCKS`)
 /// 1.12 (the 40-byte header and two-word heads, before the compact form), 1.13 (before
 /// `LEFT_FOURS` and `RIGHT_FOURS`: a chain's step of 4 an exception word) and 1.14 (before
-/// `ROW_RECORDS` and `IMPLIED_WARTS`: records of T0 corners, stored WART flags), kept from
-/// before each change, for `torus_with_t0` and `genus3_torus`, `two_components` of versions
-/// 1.10, 1.12, 1.13 and 1.14 (two rings) and `four_spheres` of versions 1.12, 1.13 and 1.14
-/// (four rings over four blocks): they still open, verify, and give every corner's vertex and opposite as a file
+/// `ROW_RECORDS` and `IMPLIED_WARTS`: records of T0 corners, stored WART flags) and 1.15
+/// (before `JOINED_LISTS`: each list padded to a word), kept from before each change, for `torus_with_t0` and `genus3_torus`, `two_components` of versions
+/// 1.10 and 1.12 to 1.15 (two rings) and `four_spheres` of versions 1.12 to 1.15 (four
+/// rings over four blocks): they still open, verify, and give every corner's vertex and opposite as a file
 /// of the current version of the same ring does (the listing after its header lines). They
 /// were written from the ring of seed 1 alone: the current vectors come from the smallest
 /// of 32 seeds (level 6, `write::zipper_seeds`), so that file is written at level 5, which
 /// builds one.
 #[test]
-fn zipper_files_of_versions_1_7_to_1_14_read_the_same() {
+fn zipper_files_of_versions_1_7_to_1_15_read_the_same() {
     let versions = [
         (
             7,
-            "wart deltas: false, short heads: false, packed lists: false, inner ring starts: false, ring blocks: false, compact: false, fours: none, row records: false, implied warts: false",
+            "wart deltas: false, short heads: false, packed lists: false, inner ring starts: false, ring blocks: false, compact: false, fours: none, row records: false, implied warts: false, joined lists: false",
         ),
         (
             8,
-            "wart deltas: true, short heads: false, packed lists: false, inner ring starts: false, ring blocks: false, compact: false, fours: none, row records: false, implied warts: false",
+            "wart deltas: true, short heads: false, packed lists: false, inner ring starts: false, ring blocks: false, compact: false, fours: none, row records: false, implied warts: false, joined lists: false",
         ),
         (
             9,
-            "wart deltas: true, short heads: true, packed lists: false, inner ring starts: false, ring blocks: false, compact: false, fours: none, row records: false, implied warts: false",
+            "wart deltas: true, short heads: true, packed lists: false, inner ring starts: false, ring blocks: false, compact: false, fours: none, row records: false, implied warts: false, joined lists: false",
         ),
         (
             10,
-            "wart deltas: true, short heads: true, packed lists: true, inner ring starts: false, ring blocks: false, compact: false, fours: none, row records: false, implied warts: false",
+            "wart deltas: true, short heads: true, packed lists: true, inner ring starts: false, ring blocks: false, compact: false, fours: none, row records: false, implied warts: false, joined lists: false",
         ),
         (
             12,
-            "wart deltas: true, short heads: true, packed lists: true, inner ring starts: true, ring blocks: true, compact: false, fours: none, row records: false, implied warts: false",
+            "wart deltas: true, short heads: true, packed lists: true, inner ring starts: true, ring blocks: true, compact: false, fours: none, row records: false, implied warts: false, joined lists: false",
         ),
         (
             13,
-            "-bit counts, fours: none, row records: false, implied warts: false",
+            "-bit counts, fours: none, row records: false, implied warts: false, joined lists: false",
         ),
-        (14, "row records: false, implied warts: false"),
+        (14, "row records: false, implied warts: false, joined lists: false"),
+        (15, "row records: true, implied warts: true, joined lists: false"),
     ];
     for name in [
         "torus_with_t0",
@@ -550,6 +552,7 @@ fn zipper_files_of_versions_1_7_to_1_14_read_the_same() {
         );
         assert!(header.contains("fours: left"), "{header}");
         assert!(header.contains("row records: true"), "{header}");
+        assert!(header.ends_with("joined lists: true"), "{header}");
         for &(minor, flags) in versions {
             let file = format!("{name}.zipper-1.{minor}.lrm");
             let old = std::fs::read(dir().join(&file)).unwrap();

@@ -502,6 +502,12 @@ pub const ZIPPER_ROW_RECORDS: u32 = 256;
 /// T2's tip; a redundant copy's tip is it), one bit less in each.
 pub const ZIPPER_IMPLIED_WARTS: u32 = 512;
 
+/// `ZIPR` flag (FORMAT.md §3.5e.6, version 1.16; in the compact form with `PACKED_LISTS`
+/// only): the nine bit lists (the compact heads' two, then `EXCEPTIONS` to `C`) are one bit
+/// stream, each from the bit where the one before ends, padded to a word only at its end:
+/// up to 31 bits saved per list, 3–5% of a Zipper of a few hundred triangles.
+pub const ZIPPER_JOINED_LISTS: u32 = 1024;
+
 impl ZiprHeader {
     /// Bytes of the header.
     pub const LEN: usize = 40;
@@ -662,6 +668,40 @@ impl ZiprHeader {
         (self.m_r as u64).div_ceil(1 << crate::lr::zipper::BLOCK_SHIFT)
     }
 
+    /// With [`ZIPPER_JOINED_LISTS`] (in the compact form), the first bit of each of the
+    /// nine bit lists (the anchors, the head counts, then `EXCEPTIONS` to `C`) from the
+    /// start of `HEADS`, then the bits of the whole stream; `None` otherwise or when the
+    /// counts overflow.
+    pub fn joined_bits(&self) -> Option<[u64; 10]> {
+        use crate::lr::zipper::first_bit;
+        if self.flags & ZIPPER_JOINED_LISTS == 0 {
+            return None;
+        }
+        let (anchor, counts) = self.head_fields()?;
+        let lists = self.list_lengths()?;
+        let fields = self.list_fields();
+        let heads = 2 * self.blocks();
+        let mut bits = [
+            first_bit(anchor, heads),
+            first_bit(counts, heads),
+            0,
+            0,
+            0,
+            0,
+            0,
+            0,
+            0,
+        ];
+        for q in 0..7 {
+            bits[2 + q] = first_bit(fields[q], lists[q]);
+        }
+        let mut starts = [0u64; 10];
+        for q in 0..9 {
+            starts[q + 1] = starts[q].checked_add(bits[q])?;
+        }
+        Some(starts)
+    }
+
     /// In the compact form, the words of the anchors' list (the first part of `HEADS`).
     pub fn anchor_words(&self) -> u64 {
         match self.head_fields() {
@@ -745,7 +785,15 @@ impl ZiprHeader {
         };
         let lists = self.list_lengths()?;
         let fields = self.list_fields();
-        let list_words: [u64; 7] = std::array::from_fn(|i| packed_words(lists[i], fields[i]));
+        let mut list_words: [u64; 7] = std::array::from_fn(|i| packed_words(lists[i], fields[i]));
+        // JOINED_LISTS: HEADS holds the one stream of the nine lists.
+        let heads = match self.flags & ZIPPER_JOINED_LISTS != 0 {
+            true => {
+                list_words = [0; 7];
+                self.joined_bits()?[9].div_ceil(32)
+            }
+            false => heads,
+        };
         let ring_blocks = crate::lr::zipper::ring_block_field(self.rings);
         let counts = [
             match self.inner_ring_starts() {

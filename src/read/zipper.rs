@@ -10,8 +10,8 @@ use crate::corner_table::NONE;
 use crate::error::{Result, Rule};
 use crate::format::layout::{
     ZiprHeader, LR_BOUNDARIES_ON_RING, ZIPPER_IMPLIED_WARTS, ZIPPER_INNER_RING_STARTS,
-    ZIPPER_LEFT_FOURS, ZIPPER_PACKED_LISTS, ZIPPER_RIGHT_FOURS, ZIPPER_RING_BLOCKS,
-    ZIPPER_ROW_RECORDS, ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
+    ZIPPER_JOINED_LISTS, ZIPPER_LEFT_FOURS, ZIPPER_PACKED_LISTS, ZIPPER_RIGHT_FOURS,
+    ZIPPER_RING_BLOCKS, ZIPPER_ROW_RECORDS, ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
 };
 use crate::format::Tag;
 use crate::ids::Corner;
@@ -59,7 +59,8 @@ pub(super) fn zipper_tables<'a>(
         | ZIPPER_LEFT_FOURS
         | ZIPPER_RIGHT_FOURS
         | ZIPPER_ROW_RECORDS
-        | ZIPPER_IMPLIED_WARTS;
+        | ZIPPER_IMPLIED_WARTS
+        | ZIPPER_JOINED_LISTS;
     if h.flags & !known != 0 || h.reserved != 0 {
         return Err(f.err(
             if compact { 0 } else { 32 },
@@ -67,15 +68,17 @@ pub(super) fn zipper_tables<'a>(
             "unknown flag bits or reserved bits are set",
         ));
     }
-    // Their fields only exist as bit fields.
-    if h.flags & (ZIPPER_ROW_RECORDS | ZIPPER_IMPLIED_WARTS) != 0
-        && h.flags & ZIPPER_PACKED_LISTS == 0
-    {
+    // Their fields only exist as bit fields; the joined stream only in the compact form.
+    let bit_flags = ZIPPER_ROW_RECORDS | ZIPPER_IMPLIED_WARTS | ZIPPER_JOINED_LISTS;
+    if h.flags & bit_flags != 0 && h.flags & ZIPPER_PACKED_LISTS == 0 {
         return Err(f.err(
             if compact { 0 } else { 32 },
             Rule(56),
-            "ROW_RECORDS or IMPLIED_WARTS without PACKED_LISTS",
+            "ROW_RECORDS, IMPLIED_WARTS or JOINED_LISTS without PACKED_LISTS",
         ));
+    }
+    if h.flags & ZIPPER_JOINED_LISTS != 0 && !compact {
+        return Err(f.err(32, Rule(56), "JOINED_LISTS without the compact form"));
     }
     if m >= NULL {
         return Err(f.err(
@@ -116,7 +119,19 @@ pub(super) fn zipper_tables<'a>(
         ));
     };
     let fields = h.list_fields();
-    let list = |i: usize, words: LeWords<'a>| Packed::new(words, lengths[i], fields[i]);
+    // JOINED_LISTS: list q of the nine (anchors, counts, then the seven) from bit
+    // `joined[q]` of HEADS' stream, over the words that hold it.
+    let joined = h.joined_bits();
+    let stream = |q: usize, fields: [Field; 2], len: usize| {
+        let bits = joined.expect("joined");
+        let (from, to) = (bits[q], bits[q + 1]);
+        let words = &heads.0[4 * (from / 32) as usize..4 * to.div_ceil(32) as usize];
+        Packed::new_at(LeWords(words), (from % 32) as u8, len, fields)
+    };
+    let list = |i: usize, words: LeWords<'a>| match joined {
+        Some(_) => stream(2 + i, fields[i], lengths[i]),
+        None => Packed::new(words, lengths[i], fields[i]),
+    };
     let lists = [
         list(0, exceptions),
         list(1, records),
@@ -130,6 +145,12 @@ pub(super) fn zipper_tables<'a>(
     let anchor_bytes = 4 * h.anchor_words() as usize;
     let head_fields = h.head_fields();
     let (anchors, head_counts, heads) = match head_fields {
+        Some((anchor, counts)) if joined.is_some() => {
+            let blocks = 2 * h.blocks() as usize;
+            let anchors = stream(0, anchor, blocks);
+            let head_counts = stream(1, counts, blocks);
+            (anchors, head_counts, LeWords(&[]))
+        }
         Some((anchor, counts)) => {
             let (a, c) = heads.0.split_at(anchor_bytes);
             let blocks = 2 * h.blocks() as usize;
@@ -158,11 +179,18 @@ pub(super) fn zipper_tables<'a>(
     let count_fields = head_fields.map(|(_, counts)| counts);
     // Where element `i` of an array starts (an error names its byte); in the compact form,
     // HEADS' element `i` is the counts' list's.
-    let offset_of = |array: usize, i: usize| match (array, count_fields) {
-        (EXCEPTIONS..=C, _) => {
+    let offset_of = |array: usize, i: usize| match (array, count_fields, joined) {
+        (EXCEPTIONS..=C, _, Some(bits)) => {
+            let (q, fields) = (2 + array - EXCEPTIONS, fields[array - EXCEPTIONS]);
+            starts[HEADS] + ((bits[q] + first_bit(fields, i as u64)) / 8) as usize
+        }
+        (HEADS, Some(counts), Some(bits)) => {
+            starts[HEADS] + ((bits[1] + first_bit(counts, i as u64)) / 8) as usize
+        }
+        (EXCEPTIONS..=C, _, None) => {
             starts[array] + (first_bit(fields[array - EXCEPTIONS], i as u64) / 8) as usize
         }
-        (HEADS, Some(counts)) => {
+        (HEADS, Some(counts), None) => {
             starts[HEADS] + anchor_bytes + (first_bit(counts, i as u64) / 8) as usize
         }
         _ => starts[array] + 4 * i,
@@ -170,10 +198,17 @@ pub(super) fn zipper_tables<'a>(
     let word_err = |array: usize, i: usize, rule: Rule, message: String| {
         f.err(offset_of(array, i), rule, message)
     };
-    if let Some(k) = lists.iter().position(|l| !l.padding_is_zero()) {
+    // Joined, the bits past one list are the next's: only the stream's end is padding
+    // (where the last list, C, ends).
+    let padded = |k: usize| joined.is_none() || k == 6;
+    if let Some(k) = (0..7).find(|&k| padded(k) && !lists[k].padding_is_zero()) {
         let array = EXCEPTIONS + k;
+        let end = match joined {
+            Some(_) => arrays[HEADS].end(),
+            None => arrays[array].end(),
+        };
         return Err(f.err(
-            arrays[array].end() - 4,
+            end - 4,
             Rule(56),
             format!(
                 "{}: bits past its last field are set",
@@ -271,6 +306,7 @@ pub(super) fn zipper_tables<'a>(
         ),
         row_records: h.flags & ZIPPER_ROW_RECORDS != 0,
         implied_warts: h.flags & ZIPPER_IMPLIED_WARTS != 0,
+        joined_lists: joined.is_some(),
     };
     debug_assert_eq!(tables.planes.count(), plane_array_words(m_r));
 

@@ -7,8 +7,8 @@ use crate::error::Result;
 use crate::format::layout::{
     write_fields, CompactZipr, Layout, LrbeHeader, LrtbHeader, StrpHeader, ZiprHeader,
     LRBE_TIP_BASES, LR_BOUNDARIES_ON_RING, ZIPPER_IMPLIED_WARTS, ZIPPER_INNER_RING_STARTS,
-    ZIPPER_LEFT_FOURS, ZIPPER_PACKED_LISTS, ZIPPER_RIGHT_FOURS, ZIPPER_RING_BLOCKS,
-    ZIPPER_ROW_RECORDS, ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
+    ZIPPER_JOINED_LISTS, ZIPPER_LEFT_FOURS, ZIPPER_PACKED_LISTS, ZIPPER_RIGHT_FOURS,
+    ZIPPER_RING_BLOCKS, ZIPPER_ROW_RECORDS, ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
 };
 use crate::format::{Kind, Tag};
 use crate::ids::{Triangle, Vertex};
@@ -215,11 +215,28 @@ pub(super) fn zipper_section(z: &Zipper, shape: bool) -> Encoded {
     let header = zipper_header(z);
     let layout = header.layout().expect("a built Zipper fits its layout");
     let mut p = header.to_bytes();
-    // In the compact form, HEADS is the anchors' list and then the counts'.
-    let heads: Vec<u32> = match t.compact {
-        true => [t.anchors.words.as_slice(), t.head_counts.words.as_slice()].concat(),
-        false => t.heads.clone(),
+    // In the compact form, HEADS is the anchors' list and then the counts'; with
+    // JOINED_LISTS, the one stream of those and the seven lists.
+    let lists = t.bit_lists();
+    let heads: Vec<u32> = match (t.joined_lists, t.compact) {
+        (true, _) => {
+            let parts = lists.map(|l| (l.words.as_slice(), l.bits()));
+            crate::lr::zipper::join_bits(&parts)
+        }
+        (false, true) => [t.anchors.words.as_slice(), t.head_counts.words.as_slice()].concat(),
+        (false, false) => t.heads.clone(),
     };
+    let none: Vec<u32> = Vec::new();
+    let [exceptions, records, pairs, t0_v, t0_codes, t0_explicit, c] = [
+        &t.exceptions,
+        &t.records,
+        &t.pairs,
+        &t.t0_v,
+        &t.t0_codes,
+        &t.t0_explicit,
+        &t.c,
+    ]
+    .map(|l| if t.joined_lists { &none } else { &l.words });
     write_arrays(
         &mut p,
         &layout,
@@ -233,13 +250,13 @@ pub(super) fn zipper_section(z: &Zipper, shape: bool) -> Encoded {
             &t.ring_rank,
             &t.planes,
             &heads,
-            &t.exceptions.words,
-            &t.records.words,
-            &t.pairs.words,
-            &t.t0_v.words,
-            &t.t0_codes.words,
-            &t.t0_explicit.words,
-            &t.c.words,
+            exceptions,
+            records,
+            pairs,
+            t0_v,
+            t0_codes,
+            t0_explicit,
+            c,
             &t.super_counts,
         ],
         &[],
@@ -296,6 +313,11 @@ pub(crate) fn zipper_header(z: &Zipper) -> ZiprHeader {
             }
             | if t.row_records_and_implied_warts()[1] {
                 ZIPPER_IMPLIED_WARTS
+            } else {
+                0
+            }
+            | if t.joined_lists() {
+                ZIPPER_JOINED_LISTS
             } else {
                 0
             },

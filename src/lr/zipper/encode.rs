@@ -357,6 +357,7 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
         four_sides: sides,
         row_records: true,
         implied_warts,
+        joined_lists: true,
     };
     same_as_standard(&z, t)?;
     Ok(z)

@@ -42,7 +42,8 @@ mod tables;
 
 pub(crate) use encode::ring_blocks;
 pub use packed::{
-    first_bit, list_fields, packed_words, ring_block_field, Field, FieldKind, Packed,
+    first_bit, join_bits, list_fields, packed_words, ring_block_field, unjoined_zipr, Field,
+    FieldKind, Packed,
 };
 pub(crate) use tables::Slot;
 pub(crate) use tables::{below, four_sides, LEFT_SLOTS};

@@ -185,6 +185,52 @@ pub fn ring_block_field(rings: u32) -> Field {
     }
 }
 
+/// The bits of `parts` (each its words and how many of their bits it uses, from bit 0)
+/// one after the other, padded with zeros to a whole word (`JOINED_LISTS`, FORMAT.md
+/// §3.5e.6).
+pub fn join_bits(parts: &[(&[u32], u64)]) -> Vec<u32> {
+    let total: u64 = parts.iter().map(|&(_, bits)| bits).sum();
+    let mut out = vec![0u32; total.div_ceil(32) as usize];
+    let mut at = 0u64;
+    for &(words, bits) in parts {
+        for b in 0..bits {
+            let bit = words[(b / 32) as usize] >> (b % 32) & 1;
+            out[((at + b) / 32) as usize] |= bit << ((at + b) % 32);
+        }
+        at += bits;
+    }
+    out
+}
+
+/// A compact `ZIPR` section `p` with `JOINED_LISTS` laid out again without it: each of the
+/// nine bit lists from a word of its own, as version 1.15 lays them out, the same fields in
+/// each (for a reader of that version, or a tool that edits one list). `None` when the
+/// section does not have the flag or is shorter than its counts call for.
+pub fn unjoined_zipr(p: &[u8]) -> Option<Vec<u8>> {
+    use crate::format::layout::{ZiprHeader, ZIPPER_JOINED_LISTS};
+    let header = ZiprHeader::read(p);
+    let bits = header.joined_bits()?;
+    let heads = header.layout()?.arrays[4];
+    let stream = p.get(heads.start..heads.end())?;
+    let mut out_header = header;
+    out_header.flags &= !ZIPPER_JOINED_LISTS;
+    let mut out = out_header.to_bytes();
+    out.extend_from_slice(p.get(header.header_len()..heads.start)?);
+    for q in 0..9 {
+        let (from, to) = (bits[q], bits[q + 1]);
+        let mut words = vec![0u32; (to - from).div_ceil(32) as usize];
+        for b in 0..to - from {
+            let at = from + b;
+            let bit = (stream[(at / 8) as usize] >> (at % 8) & 1) as u32;
+            words[(b / 32) as usize] |= bit << (b % 32);
+        }
+        out.extend(words.iter().flat_map(|w| w.to_le_bytes()));
+    }
+    // The seven lists took no words of their own: SUPER follows the stream.
+    out.extend_from_slice(&p[heads.end()..]);
+    Some(out)
+}
+
 /// Words that `count` elements of `fields` take (even elements of `fields[0]`, odd of
 /// `fields[1]`).
 pub fn packed_words(count: u64, fields: [Field; 2]) -> u64 {
@@ -208,25 +254,48 @@ pub struct Packed<W> {
     len: usize,
     /// Fields of even and odd elements.
     fields: [Field; 2],
+    /// The bit of the first word where element 0 starts (below 32; 0 but for the lists of
+    /// a stream of `JOINED_LISTS`).
+    start: u8,
 }
 
 impl<W: Words> Packed<W> {
     /// `len` elements of `fields` in `words`, which must hold [`packed_words`] of them.
     pub fn new(words: W, len: usize, fields: [Field; 2]) -> Packed<W> {
-        debug_assert_eq!(words.count() as u64, packed_words(len as u64, fields));
-        Packed { words, len, fields }
+        Packed::new_at(words, 0, len, fields)
     }
 
-    /// The first bit of element `i`.
+    /// As [`Packed::new`], element 0 at bit `start` (below 32) of the first word: `words`
+    /// must hold the bits from there.
+    pub fn new_at(words: W, start: u8, len: usize, fields: [Field; 2]) -> Packed<W> {
+        debug_assert!(start < 32);
+        debug_assert_eq!(
+            words.count() as u64,
+            (start as u64 + first_bit(fields, len as u64)).div_ceil(32)
+        );
+        Packed {
+            words,
+            len,
+            fields,
+            start,
+        }
+    }
+
+    /// The first bit of element `i` (from bit 0 of the first word).
     #[inline(always)]
     pub fn bit(&self, i: usize) -> u64 {
-        first_bit(self.fields, i as u64)
+        self.start as u64 + first_bit(self.fields, i as u64)
     }
 
     /// Whether the bits of the last word past the last element are 0.
     pub fn padding_is_zero(&self) -> bool {
         let used = (self.bit(self.len) % 32) as u32;
         used == 0 || self.words.at(self.words.count() - 1) >> used == 0
+    }
+
+    /// The bits the elements take (from element 0's first bit).
+    pub fn bits(&self) -> u64 {
+        first_bit(self.fields, self.len as u64)
     }
 
     /// The stored words.
@@ -247,7 +316,10 @@ impl<W: Words> Packed<W> {
     /// The words every element stands for, in order: one pass over the stored words, each
     /// read once (the readers' linear checks).
     pub fn iter(&self) -> impl Iterator<Item = u32> + '_ {
-        let (mut next_word, mut buffer, mut have) = (0usize, 0u64, 0u32);
+        let (mut next_word, mut buffer, mut have) = match self.start {
+            0 => (0usize, 0u64, 0u32),
+            s => (1, (self.words.at(0) >> s) as u64, 32 - s as u32),
+        };
         (0..self.len).map(move |i| {
             let field = self.fields[i % 2];
             let width = field.width as u32;
@@ -269,6 +341,7 @@ impl<W: Words> Packed<W> {
             words: f(&self.words),
             len: self.len,
             fields: self.fields,
+            start: self.start,
         }
     }
 }
@@ -296,6 +369,7 @@ impl Packed<Vec<u32>> {
             words: out,
             len: words.len(),
             fields,
+            start: 0,
         })
     }
 }

@@ -83,6 +83,9 @@ pub struct ZipperTables<W> {
     pub(crate) row_records: bool,
     /// The header's `IMPLIED_WARTS` flag: stored words hold no WART flag.
     pub(crate) implied_warts: bool,
+    /// The header's `JOINED_LISTS` flag: in the file, the nine bit lists are one stream
+    /// (each list here is read where it lies in it).
+    pub(crate) joined_lists: bool,
 }
 
 /// The symbol planes of one block and where a slot lies in them.
@@ -474,6 +477,11 @@ impl<W: Words> ZipperTables<W> {
         self.wart_deltas
     }
 
+    /// Whether the header's `JOINED_LISTS` flag is set (version 1.16).
+    pub fn joined_lists(&self) -> bool {
+        self.joined_lists
+    }
+
     /// Whether the header's `ROW_RECORDS` and `IMPLIED_WARTS` flags are set (version 1.15).
     pub fn row_records_and_implied_warts(&self) -> [bool; 2] {
         [self.row_records, self.implied_warts]
@@ -502,6 +510,22 @@ impl<W: Words> ZipperTables<W> {
     /// Number of explicit T0 opposites.
     pub fn explicit_count(&self) -> usize {
         self.t0_explicit.count()
+    }
+
+    /// The nine bit lists of the compact form, in file order: the anchors, the head counts,
+    /// then `EXCEPTIONS` to `C`.
+    pub(crate) fn bit_lists(&self) -> [&Packed<W>; 9] {
+        [
+            &self.anchors,
+            &self.head_counts,
+            &self.exceptions,
+            &self.records,
+            &self.pairs,
+            &self.t0_v,
+            &self.t0_codes,
+            &self.t0_explicit,
+            &self.c,
+        ]
     }
 
     /// Words of the parts: symbols and heads, exceptions, records, T0 rows.
@@ -538,12 +562,18 @@ impl<W: Words> ZipperTables<W> {
             true => super::compact_header_len(super::count_bytes(&self.header_counts())),
             false => 40,
         };
-        let words = self.ring_starts.count()
+        let mut words = self.ring_starts.count()
             + self.ring_last.count()
             + self.ring_rank.count()
             + self.ring_blocks.words.count()
             + self.part_words().iter().sum::<usize>()
             + self.c.words.count();
+        if self.joined_lists {
+            // The nine lists' words give way to one stream of their bits.
+            let lists = self.bit_lists();
+            words -= lists.iter().map(|l| l.words.count()).sum::<usize>();
+            words += lists.iter().map(|l| l.bits()).sum::<u64>().div_ceil(32) as usize;
+        }
         header as u64 + 4 * words as u64
     }
 }

@@ -61,6 +61,7 @@ fn counting<'a>(
         four_sides: z.four_sides,
         row_records: z.row_records,
         implied_warts: z.implied_warts,
+        joined_lists: z.joined_lists,
         inner_ring_starts: z.inner_ring_starts,
         ring_blocks_flag: z.ring_blocks_flag,
     }

@@ -38,8 +38,11 @@ fn base(rng: &mut Rng) -> (Vec<SectionBytes>, usize) {
     (sections, z)
 }
 
-/// A compact `ZIPR` section with its anchors rewritten as 16-bit fields (the same values).
+/// A compact `ZIPR` section with its anchors rewritten as 16-bit fields (the same values),
+/// its lists no longer joined.
 pub(crate) fn with_wide_anchors(p: &[u8]) -> Vec<u8> {
+    let unjoined = crate::lr::zipper::unjoined_zipr(p);
+    let p = unjoined.as_deref().unwrap_or(p);
     let h = ZiprHeader::read(p);
     let (anchor, _) = h.head_fields().expect("the compact form");
     let heads = h.layout().expect("a valid layout").arrays[4];
