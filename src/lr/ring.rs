@@ -298,7 +298,17 @@ impl<'a> Prepared<'a> {
     /// seed corner of [`Prepared::rings`]), or with `exact` the rings the build makes (all
     /// its tries and the leaf moves). The factors are least-squares fits of the built sizes
     /// over the shared meshes and periods; `lr::compact` ranks periods by it.
-    pub(super) fn compact_estimate(&self, period: u32, options: &LrOptions, exact: bool) -> u64 {
+    ///
+    /// The sum only grows, so it stops as soon as it reaches `bound` (the best period's so
+    /// far), before the walks that cost most: a result at or above `bound` only says that
+    /// this period is no better.
+    pub(super) fn compact_estimate(
+        &self,
+        period: u32,
+        options: &LrOptions,
+        exact: bool,
+        bound: u64,
+    ) -> u64 {
         let mesh = &self.mesh;
         let mut expansion = Expansion::new(mesh, period, options.seed, 1);
         let mut rings = Rings::new(mesh);
@@ -317,11 +327,17 @@ impl<'a> Prepared<'a> {
                 None => expansion.best_of(comp, 1),
             };
             bytes += T0_BYTES * t0 as u64;
+            if bytes >= bound {
+                return bytes;
+            }
             if comp.vertices.len() as i64 > plain::NEAR_MAX {
                 let first = rings.ring_corner.len();
                 let tm = &expansion.main.tm;
                 rings.walk(mesh, comp, tm);
                 bytes += FAR_T0_BYTES * rings.far_t0(mesh, comp, tm);
+                if bytes >= bound {
+                    return bytes;
+                }
                 let offsets = rings.tip_offsets(mesh, first);
                 let [without, with] = plain::long_pairs(&offsets, 1 << BLOCK_SHIFT);
                 long[0] += without;
@@ -691,6 +707,43 @@ mod tests {
                 after < before,
                 "genus {genus}: {after} of {before} T0s left"
             );
+        }
+    }
+
+    /// A bound cuts a period's estimate short only at or above the bound, so the period
+    /// chosen is the one the whole estimates rank first: checked on components above and
+    /// below the near field's reach (walked or not), with and without `exact`.
+    #[cfg(feature = "generate")]
+    #[test]
+    fn bounded_estimates_stop_only_at_or_above_the_bound() {
+        use crate::generate::{surface, SurfaceOptions};
+        let mesh = surface(&SurfaceOptions {
+            triangles: 40_000,
+            genus: 2,
+            holes: 30,
+            components: 2,
+            irregular: true,
+            seed: 3,
+        });
+        let ct = CornerTable::from_mesh(&mesh).unwrap();
+        let prepared = Prepared::new(&ct).unwrap();
+        assert!(prepared
+            .components
+            .iter()
+            .any(|c| c.vertices.len() as i64 > plain::NEAR_MAX));
+        let options = LrOptions::default();
+        for exact in [false, true] {
+            for period in [0, 16, 128] {
+                let whole = prepared.compact_estimate(period, &options, exact, u64::MAX);
+                assert!(whole > 0);
+                for bound in [0, whole / 2, whole, whole + 1] {
+                    let cut = prepared.compact_estimate(period, &options, exact, bound);
+                    match bound > whole {
+                        true => assert_eq!(cut, whole, "period {period}, bound {bound}"),
+                        false => assert!(cut >= bound, "period {period}: {cut} below {bound}"),
+                    }
+                }
+            }
         }
     }
 }

@@ -454,7 +454,7 @@ fn choose_period(prepared: &Prepared, periods: &[u32], lr: &LrOptions) -> u32 {
     }
     let exact = prepared.triangle_count() < SMALL_MESH;
     for &period in periods {
-        let estimate = prepared.compact_estimate(period, lr, exact);
+        let estimate = prepared.compact_estimate(period, lr, exact, best.0);
         if estimate < best.0 {
             best = (estimate, period);
         }
