@@ -182,6 +182,35 @@ fn seeds_by_level_and_size() {
     );
 }
 
+/// `stored_bytes` is the `ZIPR` section's length in the container, with joined lists (the
+/// writer's form) and on meshes with one ring and several, with and without holes.
+#[test]
+fn stored_bytes_are_the_written_section() {
+    let mut holed = generate::irregular_torus(3_000, 4);
+    generate::punch_holes(&mut holed, 9, &mut Rng::new(3));
+    let two = generate::surface(&generate::SurfaceOptions {
+        triangles: 2_000,
+        genus: 2,
+        holes: 0,
+        components: 2,
+        irregular: true,
+        seed: 1,
+    });
+    for mesh in [generate::irregular_torus(5_000, 2), holed, two] {
+        let options = lrmesh::write::EncodeOptions {
+            connectivity: lrmesh::write::Connectivity::Zipper,
+            ..Default::default()
+        };
+        let bytes = lrmesh::write::encode(&mesh, &options).unwrap();
+        let view = lrmesh::read::open(&bytes, &lrmesh::read::Limits::default()).unwrap();
+        let tables = view.zipper().expect("a zipper container");
+        assert!(tables.joined_lists());
+        // No copies, kept or reversed triangles: the connectivity is the ZIPR section alone.
+        assert_eq!(view.summary().vertex_copies, 0);
+        assert_eq!(tables.stored_bytes(), view.summary().connectivity_bytes);
+    }
+}
+
 /// [`check_zipper`] of the Zipper that `build` makes from `table` (of `mesh`).
 fn check_zipper_of(
     table: &CornerTable,

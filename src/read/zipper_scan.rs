@@ -9,8 +9,8 @@
 
 use super::lr_rules::{slot_flag_masks, BitsSet, SlotBits};
 use crate::lr::zipper::{
-    below, Slot, BLOCK_SHIFT, DELTAS, FOUR, LEFT_SLOTS, PREVIOUS, RECORD_WORDS, STATE_SHIFT,
-    STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
+    below, implied_wart, Slot, BLOCK_SHIFT, DELTAS, FOUR, LEFT_SLOTS, PREVIOUS, RECORD_WORDS,
+    STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
 };
 use crate::lr::{LrLayout, ZipperTables, VALUE, WART};
 use crate::words::{LeWords, Words};
@@ -387,7 +387,7 @@ pub(super) fn scan_slots(t: &Tables) -> Option<(SlotBits, u64)> {
             // (a few in a thousand slots are before one).
             true => Bits128(stored & n.next_is_t2).fold(0, |warts, bit| {
                 let v = first + bit as u32 / 2;
-                let wart = chained[bit] != t.ring_next(t.ring_next(v));
+                let wart = implied_wart(true, chained[bit], t.ring_next(t.ring_next(v)));
                 warts | (wart as u128) << bit
             }),
         };

@@ -3,9 +3,8 @@
 //! with the standard LR's.
 
 use super::packed::{list_fields, ring_block_field, Field, FieldKind, Packed};
-use super::tables::{
-    four_sides, last_vertex_bits, plane_array_words, row_corner, slot_edges, Slot, ZipperTables,
-};
+use super::slots::{four_sides, last_vertex_bits, plane_array_words, row_corner, slot_edges, Slot};
+use super::tables::ZipperTables;
 use super::{
     below, BLOCK_SHIFT, BY_LEFT_RULE, BY_RIGHT_RULE, COMPACT_SUPER_SHIFT, DELTAS, EXCEPTION,
     EXPLICIT, EXPLICIT_SHIFT, FOUR, IRREGULAR_SLOT, LEFT_SLOTS, NEXT_NEXT_OR_NULL, NO_OPPOSITE,

@@ -38,6 +38,7 @@
 mod encode;
 mod expand;
 mod packed;
+mod slots;
 mod tables;
 
 pub(crate) use encode::ring_blocks;
@@ -45,9 +46,10 @@ pub use packed::{
     first_bit, join_bits, list_fields, packed_words, ring_block_field, unjoined_zipr, Field,
     FieldKind, Packed,
 };
-pub(crate) use tables::Slot;
-pub(crate) use tables::{below, four_sides, LEFT_SLOTS};
-pub use tables::{plane_array_words, ZipperTables};
+pub use slots::plane_array_words;
+pub(crate) use slots::Slot;
+pub(crate) use slots::{below, four_sides, implied_wart, LEFT_SLOTS};
+pub use tables::ZipperTables;
 
 use super::{InputMaps, Lr, LrCounts, LrOptions};
 use crate::corner_table::CornerTable;
