@@ -681,20 +681,11 @@ impl ZiprHeader {
         let lists = self.list_lengths()?;
         let fields = self.list_fields();
         let heads = 2 * self.blocks();
-        let mut bits = [
-            first_bit(anchor, heads),
-            first_bit(counts, heads),
-            0,
-            0,
-            0,
-            0,
-            0,
-            0,
-            0,
-        ];
-        for q in 0..7 {
-            bits[2 + q] = first_bit(fields[q], lists[q]);
-        }
+        let bits: [u64; 9] = std::array::from_fn(|q| match q {
+            0 => first_bit(anchor, heads),
+            1 => first_bit(counts, heads),
+            _ => first_bit(fields[q - 2], lists[q - 2]),
+        });
         let mut starts = [0u64; 10];
         for q in 0..9 {
             starts[q + 1] = starts[q].checked_add(bits[q])?;

@@ -226,41 +226,22 @@ pub(super) fn zipper_section(z: &Zipper, shape: bool) -> Encoded {
         (false, true) => [t.anchors.words.as_slice(), t.head_counts.words.as_slice()].concat(),
         (false, false) => t.heads.clone(),
     };
-    let none: Vec<u32> = Vec::new();
-    let [exceptions, records, pairs, t0_v, t0_codes, t0_explicit, c] = [
-        &t.exceptions,
-        &t.records,
-        &t.pairs,
-        &t.t0_v,
-        &t.t0_codes,
-        &t.t0_explicit,
-        &t.c,
-    ]
-    .map(|l| if t.joined_lists { &none } else { &l.words });
-    write_arrays(
-        &mut p,
-        &layout,
-        &[
-            &t.ring_starts,
-            if t.ring_blocks_flag && t.ring_count() > 1 {
-                &t.ring_blocks.words
-            } else {
-                &t.ring_last
-            },
-            &t.ring_rank,
-            &t.planes,
-            &heads,
-            exceptions,
-            records,
-            pairs,
-            t0_v,
-            t0_codes,
-            t0_explicit,
-            c,
-            &t.super_counts,
-        ],
-        &[],
-    );
+    // Joined, the seven lists after the heads take no words of their own.
+    let seven = lists[2..].iter().map(|l| {
+        if t.joined_lists {
+            &[][..]
+        } else {
+            &l.words[..]
+        }
+    });
+    let ring_last: &[u32] = match t.ring_blocks_flag && t.ring_count() > 1 {
+        true => &t.ring_blocks.words,
+        false => &t.ring_last,
+    };
+    let mut arrays: Vec<&[u32]> = vec![&t.ring_starts, ring_last, &t.ring_rank, &t.planes, &heads];
+    arrays.extend(seven);
+    arrays.push(&t.super_counts);
+    write_arrays(&mut p, &layout, &arrays, &[]);
     Encoded {
         kind: Kind::ZIPPER,
         tag: Tag::ZIPR,
