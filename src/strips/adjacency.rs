@@ -1,7 +1,8 @@
 //! The triangle adjacency structure of Reuter, Behr and Alexa, "An Improved Adjacency Data
 //! Structure for Fast Triangle Stripping" (JGT 2005), with indices in place of pointers.
 //!
-//! Every triangle is one record holding its three half-edges, that is their twins ([`Node`]).
+//! Every triangle is one record holding its three half-edges, that is their twins (three
+//! consecutive entries of one array).
 //! *Deviation:* the stripping state and the degree lists live apart from the records, in a
 //! byte per triangle and stacks (see the stripper), so that the stripper's look-ups at
 //! neighbours stay in a small array. Half-edge `3t + i` of triangle `t = [v0, v1, v2]` runs
@@ -12,9 +13,8 @@
 //!
 //! The paper links half-edges through a per-vertex vector of outgoing half-edges. We bucket them
 //! instead by their lower vertex and direction with one counting sort, so that the two
-//! half-edges of an edge sit in two neighbouring buckets; small buckets are matched by scanning,
-//! large ones (a vertex of high valence) through a per-vertex scratch array, so the whole pass
-//! stays linear.
+//! half-edges of an edge sit in two neighbouring buckets, matched through a per-vertex scratch
+//! array (so the whole pass stays linear, and takes almost no data-dependent branch).
 //!
 //! **Set aside** (emitted later as single triangles): triangles with a repeated vertex or a
 //! vertex out of range. **Left unlinked:** on each edge, the lowest half-edge of one direction
@@ -33,21 +33,12 @@ pub(crate) const DONE: u8 = 4;
 /// Stripping state of a set-aside triangle.
 pub(crate) const ASIDE: u8 = 5;
 
-/// Bucket size up to which half-edges are matched by scanning the bucket.
-const SCAN_LIMIT: usize = 24;
-
-/// One triangle with its three half-edges embedded, as in the paper's `Triangle` class.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Node {
-    /// The twin of each half-edge, as a half-edge id `3u + j`, or `u32::MAX` on a boundary
-    /// (or cut) edge.
-    pub twin: [u32; 3],
-}
-
 /// The triangle adjacency graph of an indexed triangle set (see the module documentation).
 #[derive(Debug, Clone)]
 pub struct Adjacency {
-    pub(crate) nodes: Vec<Node>,
+    /// The twin of each half-edge `3t + i`, as a half-edge id `3u + j`, or `u32::MAX` on a
+    /// boundary (or cut) edge: the paper's triangle records, three twins per triangle.
+    pub(crate) twins: Vec<u32>,
     /// Number of neighbours of each triangle (its twins), or `ASIDE`: the stripper's starting
     /// state, kept in a small array of its own so that its look-ups stay in cache.
     pub(crate) degree: Vec<u8>,
@@ -56,18 +47,12 @@ pub struct Adjacency {
     aside: u32,
 }
 
-#[inline(always)]
-fn link(nodes: &mut [Node], h: u32, g: u32) {
-    nodes[(h / 3) as usize].twin[(h % 3) as usize] = g;
-    nodes[(g / 3) as usize].twin[(g % 3) as usize] = h;
-}
-
 /// Links the twins of `triangles` over `vertex_count` vertices (see the module documentation)
-/// and returns the records, the degrees (`ASIDE` for set-aside triangles) and the number of
-/// set-aside triangles.
-pub(crate) fn link_twins(vertex_count: usize, triangles: &[[u32; 3]]) -> (Vec<Node>, Vec<u8>, u32) {
+/// and returns the twins of the half-edges, the degrees (`ASIDE` for set-aside triangles) and
+/// the number of set-aside triangles.
+pub(crate) fn link_twins(vertex_count: usize, triangles: &[[u32; 3]]) -> (Vec<u32>, Vec<u8>, u32) {
     let n = triangles.len();
-    let mut nodes = vec![Node { twin: [NONE; 3] }; n];
+    let mut twins = vec![NONE; 3 * n];
     let mut degree = vec![0u8; n];
     // Two buckets per vertex: half-edges lo -> hi, then hi -> lo. `start[k]` counts bucket k,
     // then (inclusive prefix sums, filled downwards) begins it; it ends at `start[k + 1]`.
@@ -107,69 +92,49 @@ pub(crate) fn link_twins(vertex_count: usize, triangles: &[[u32; 3]]) -> (Vec<No
     }
     // Match each edge's half-edges, bucket by bucket: the lowest of each direction pair up; a
     // half-edge used again in the same direction (a duplicate, an inconsistently oriented
-    // neighbour, a third triangle on the edge) stays unlinked. Small buckets are scanned, large
-    // ones (a vertex of high valence) go through per-vertex scratch arrays, so that the whole
-    // pass stays linear.
-    let mut first_fwd: Vec<u32> = Vec::new();
-    let mut first_bwd: Vec<u32> = Vec::new();
+    // neighbour, a third triangle on the edge) stays unlinked. `lowest[hi]` holds the lowest
+    // half-edge of each direction on the edge (lo, hi) while the bucket of lo is matched, and
+    // is reset after, so the whole pass stays linear; it takes no data-dependent branch but
+    // whether an edge has both directions.
+    let mut lowest = vec![[NONE; 2]; vertex_count];
     for lo in 0..vertex_count {
-        let (s, m, e) = (
-            start[2 * lo] as usize,
-            start[2 * lo + 1] as usize,
-            start[2 * lo + 2] as usize,
-        );
-        if m == s || e == m {
-            continue;
-        }
+        let (s, e) = (start[2 * lo] as usize, start[2 * lo + 2] as usize);
+        let m = start[2 * lo + 1] as usize;
         let (fwd, bwd) = (&bucket[s..m], &bucket[m..e]);
-        if e - s <= SCAN_LIMIT {
-            for (i, &(hi, h)) in fwd.iter().enumerate().rev() {
-                if fwd[i + 1..].iter().any(|x| x.0 == hi) {
-                    continue;
-                }
-                if let Some(&(_, g)) = bwd.iter().rev().find(|x| x.0 == hi) {
-                    link(&mut nodes, h, g);
-                }
+        // Buckets hold decreasing half-edges: the last written is the lowest.
+        for &(hi, h) in fwd {
+            lowest[hi as usize][0] = h;
+        }
+        for &(hi, h) in bwd {
+            lowest[hi as usize][1] = h;
+        }
+        for &(hi, _) in fwd {
+            let [f, b] = lowest[hi as usize];
+            if b != NONE && f != NONE {
+                twins[f as usize] = b;
+                twins[b as usize] = f;
             }
-        } else {
-            if first_fwd.is_empty() {
-                first_fwd = vec![NONE; vertex_count];
-                first_bwd = vec![NONE; vertex_count];
-            }
-            // Lowest half-edge of each direction (buckets hold decreasing half-edges).
-            for &(hi, h) in fwd {
-                first_fwd[hi as usize] = h;
-            }
-            for &(hi, h) in bwd {
-                first_bwd[hi as usize] = h;
-            }
-            for &(hi, _) in fwd {
-                let (f, b) = (first_fwd[hi as usize], first_bwd[hi as usize]);
-                if f != NONE && b != NONE {
-                    link(&mut nodes, f, b);
-                }
-                first_fwd[hi as usize] = NONE;
-            }
-            for &(hi, _) in bwd {
-                first_bwd[hi as usize] = NONE;
-            }
+            lowest[hi as usize] = [NONE; 2];
+        }
+        for &(hi, _) in bwd {
+            lowest[hi as usize][1] = NONE;
         }
     }
-    for (d, node) in degree.iter_mut().zip(&nodes) {
+    for (d, tw) in degree.iter_mut().zip(twins.chunks_exact(3)) {
         if *d != ASIDE {
-            *d = node.twin.iter().map(|&g| (g != NONE) as u8).sum();
+            *d = tw.iter().map(|&g| (g != NONE) as u8).sum();
         }
     }
-    (nodes, degree, aside)
+    (twins, degree, aside)
 }
 
 impl Adjacency {
     /// Builds the adjacency graph of `triangles` over `vertex_count` vertices. Never fails:
     /// triangles that cannot join the graph are set aside (see the module documentation).
     pub fn build(vertex_count: usize, triangles: &[[u32; 3]]) -> Adjacency {
-        let (nodes, degree, aside) = link_twins(vertex_count, triangles);
+        let (twins, degree, aside) = link_twins(vertex_count, triangles);
         Adjacency {
-            nodes,
+            twins,
             degree,
             tris: triangles.to_vec(),
             vertex_count,
@@ -184,25 +149,23 @@ impl Adjacency {
         let v = table.v_table();
         let o = table.o_table();
         let n = v.len() / 3;
-        let mut nodes = Vec::with_capacity(n);
+        let mut twins = vec![NONE; 3 * n];
         let mut tris = Vec::with_capacity(n);
         for t in 0..n {
-            let mut twin = [NONE; 3];
-            for (i, tw) in twin.iter_mut().enumerate() {
+            for i in 0..3 {
                 let d = o[3 * t + (i + 2) % 3];
                 if d != NONE {
-                    *tw = 3 * (d / 3) + (d % 3 + 1) % 3;
+                    twins[3 * t + i] = 3 * (d / 3) + (d % 3 + 1) % 3;
                 }
             }
-            nodes.push(Node { twin });
             tris.push([v[3 * t], v[3 * t + 1], v[3 * t + 2]]);
         }
-        let degree = nodes
-            .iter()
-            .map(|node| node.twin.iter().filter(|&&g| g != NONE).count() as u8)
+        let degree = twins
+            .chunks_exact(3)
+            .map(|tw| tw.iter().filter(|&&g| g != NONE).count() as u8)
             .collect();
         Adjacency {
-            nodes,
+            twins,
             tris,
             vertex_count: table.vertex_id_bound() as usize,
             degree,
@@ -212,7 +175,7 @@ impl Adjacency {
 
     /// Number of triangles, set-aside ones included.
     pub fn triangle_count(&self) -> usize {
-        self.nodes.len()
+        self.tris.len()
     }
 
     /// Number of set-aside triangles.
@@ -227,17 +190,14 @@ impl Adjacency {
 
     /// The twin of half-edge `h` (`3t + i`), `None` on a boundary, a cut edge or out of range.
     pub fn twin(&self, h: u32) -> Option<u32> {
-        let g = *self
-            .nodes
-            .get((h / 3) as usize)?
-            .twin
-            .get((h % 3) as usize)?;
+        let g = *self.twins.get(h as usize)?;
         (g != NONE).then_some(g)
     }
 
-    /// The triangle records.
-    pub fn nodes(&self) -> &[Node] {
-        &self.nodes
+    /// The twin of every half-edge `3t + i` (half-edge `i` of triangle `t` runs from its
+    /// vertex `i` to vertex `(i + 1) mod 3`), `u32::MAX` on a boundary or cut edge.
+    pub fn twins(&self) -> &[u32] {
+        &self.twins
     }
 
     /// The triangles, as given.
@@ -260,10 +220,10 @@ mod tests {
         let mut torus = generate::irregular_torus(20_000, 1).triangles;
         rng.shuffle(&mut torus);
         for (vertex_count, tris) in [(40, soup), (torus.len(), torus)] {
-            let (nodes, degree, _) = link_twins(vertex_count, &tris);
-            for (node, &d) in nodes.iter().zip(&degree) {
+            let (twins, degree, _) = link_twins(vertex_count, &tris);
+            for (tw, &d) in twins.chunks_exact(3).zip(&degree) {
                 if d != ASIDE {
-                    assert_eq!(d as usize, node.twin.iter().filter(|&&g| g != NONE).count());
+                    assert_eq!(d as usize, tw.iter().filter(|&&g| g != NONE).count());
                 }
             }
         }

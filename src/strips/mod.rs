@@ -21,7 +21,7 @@ mod lr_index;
 mod stats;
 mod stripper;
 
-pub use adjacency::{Adjacency, Node};
+pub use adjacency::Adjacency;
 pub use cts::{Cts, CtsTables, DELIMITER};
 pub use lr_index::{lr_index_list, LrIndexList, INDEX_WART};
 pub use stats::StripStats;
@@ -138,9 +138,9 @@ pub fn decode_strips(strips: &[u32], out: &mut Vec<[u32; 3]>) {
 /// exactly once, with its orientation: in a strip, a fan or the list of lone triangles.
 /// Linear time per sample; never panics.
 pub fn stripify(vertex_count: usize, triangles: &[[u32; 3]], options: &StripOptions) -> Strips {
-    // The records alone: the stripper reads the triangles where they are.
-    let (nodes, degree, _) = adjacency::link_twins(vertex_count, triangles);
-    stripper::stripify_nodes(&nodes, &degree, triangles, vertex_count, options)
+    // The twins alone: the stripper reads the triangles where they are.
+    let (twins, degree, _) = adjacency::link_twins(vertex_count, triangles);
+    stripper::stripify_twins(&twins, &degree, triangles, vertex_count, options)
 }
 
 /// Strips an [`Adjacency`] graph (which may be reused: each run resets its lists).

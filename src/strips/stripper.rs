@@ -17,7 +17,7 @@
 //!    starts (a rotated list order and random ties) and the result with the fewest indices is
 //!    kept.
 
-use super::adjacency::{Adjacency, Node, ASIDE, DONE};
+use super::adjacency::{Adjacency, ASIDE, DONE};
 use super::{StripOptions, Strips, RESTART};
 use crate::corner_table::NONE;
 use crate::rng::Rng;
@@ -46,27 +46,33 @@ struct Lists {
 impl Lists {
     /// Takes `t` out of its list for good and drops its free neighbours one degree.
     #[inline(always)]
-    fn take(&mut self, nodes: &[Node], state: &mut [u8], t: u32) {
+    fn take(&mut self, twins: &[u32], state: &mut [u8], t: u32) {
         state[t as usize] = DONE;
-        self.drop_neighbours(&nodes[t as usize].twin, state, NONE);
+        self.drop_neighbours(&twins_of(twins, t), state);
     }
 
-    /// Drops the free triangles across `twin` but `skip` one degree.
+    /// Drops the free triangles across `twin` one degree.
     #[inline(always)]
-    fn drop_neighbours(&mut self, twin: &[u32; 3], state: &mut [u8], skip: u32) {
+    fn drop_neighbours(&mut self, twin: &[u32; 3], state: &mut [u8]) {
         for &g in twin {
-            if g == NONE {
-                continue;
-            }
-            let u = g / 3;
-            let d = state[u as usize];
-            if d <= 3 && u != skip {
-                // A free neighbour shares an edge with the taken triangle: its degree is at
-                // least one.
-                let d = d.saturating_sub(1);
-                state[u as usize] = d;
-                self.stacks[d as usize].push(u);
-            }
+            self.drop_across(g, state, NONE);
+        }
+    }
+
+    /// Drops the triangle across half-edge `g` one degree if it is free and not `skip`.
+    #[inline(always)]
+    fn drop_across(&mut self, g: u32, state: &mut [u8], skip: u32) {
+        if g == NONE {
+            return;
+        }
+        let u = g / 3;
+        let d = state[u as usize];
+        if d <= 3 && u != skip {
+            // A free neighbour shares an edge with the taken triangle: its degree is at least
+            // one.
+            let d = d.saturating_sub(1);
+            state[u as usize] = d;
+            self.stacks[d as usize].push(u);
         }
     }
 
@@ -102,6 +108,13 @@ impl Lists {
     }
 }
 
+/// The twins of triangle `t`'s three half-edges.
+#[inline(always)]
+fn twins_of(twins: &[u32], t: u32) -> [u32; 3] {
+    let h = 3 * t as usize;
+    [twins[h], twins[h + 1], twins[h + 2]]
+}
+
 #[inline(always)]
 fn free(state: &[u8], g: u32) -> bool {
     g != NONE && state[(g / 3) as usize] <= 3
@@ -109,8 +122,8 @@ fn free(state: &[u8], g: u32) -> bool {
 
 /// Strips `adj` with `options`, keeping the best of the samples.
 pub(crate) fn stripify_adjacency(adj: &mut Adjacency, options: &StripOptions) -> Strips {
-    stripify_nodes(
-        &adj.nodes,
+    stripify_twins(
+        &adj.twins,
         &adj.degree,
         &adj.tris,
         adj.vertex_count,
@@ -118,9 +131,9 @@ pub(crate) fn stripify_adjacency(adj: &mut Adjacency, options: &StripOptions) ->
     )
 }
 
-/// Strips the triangles `tris` whose records (twins linked) are `nodes`.
-pub(crate) fn stripify_nodes(
-    nodes: &[Node],
+/// Strips the triangles `tris` whose half-edges have the twins `twins`.
+pub(crate) fn stripify_twins(
+    twins: &[u32],
     degree: &[u8],
     tris: &[[u32; 3]],
     vertex_count: usize,
@@ -135,7 +148,7 @@ pub(crate) fn stripify_nodes(
             state.copy_from_slice(degree);
         }
         let out = run(
-            nodes,
+            twins,
             &mut state,
             any_aside,
             tris,
@@ -157,7 +170,7 @@ pub(crate) fn stripify_nodes(
 /// One stripping of `adj`; sample 0 is deterministic, later ones randomised through `rng`.
 #[allow(clippy::too_many_arguments)]
 fn run(
-    nodes: &[Node],
+    twins: &[u32],
     state: &mut [u8],
     any_aside: bool,
     tris: &[[u32; 3]],
@@ -166,7 +179,7 @@ fn run(
     sample: u32,
     rng: &mut Rng,
 ) -> Strips {
-    let n = nodes.len() as u32;
+    let n = tris.len() as u32;
     let mut out = Strips {
         strips: Vec::with_capacity(n as usize + n as usize / 4),
         strip_order: Vec::with_capacity(n as usize),
@@ -208,7 +221,7 @@ fn run(
     if options.fan_threshold >= 3 {
         fans(
             tris,
-            nodes,
+            twins,
             state,
             &mut lists,
             vertex_count,
@@ -218,11 +231,11 @@ fn run(
     }
     let mut swaps = 0u32;
     while let Some(t0) = lists.lowest(state) {
-        lists.take(nodes, state, t0);
+        lists.take(twins, state, t0);
         // The start's lowest-degree free neighbour.
         let mut best = NONE;
         let mut best_degree = u8::MAX;
-        let twin = nodes[t0 as usize].twin;
+        let twin = twins_of(twins, t0);
         for (i, &g) in twin.iter().enumerate() {
             if !free(state, g) {
                 continue;
@@ -266,10 +279,14 @@ fn run(
             } else {
                 ((k + 1) % 3, (k + 2) % 3)
             };
-            let twin = nodes[cur as usize].twin;
+            // Taking `cur` drops its free neighbours one degree but the strip's next triangle,
+            // taken at once: the one across the entry is taken already, and so is the one across
+            // the edge not taken when the strip swaps or ends (it was not free).
+            let twin = twins_of(twins, cur);
             let next = if free(state, twin[natural]) {
                 out.strips.push(r);
                 (p, q) = (q, r);
+                lists.drop_across(twin[other], state, twin[natural] / 3);
                 twin[natural]
             } else if free(state, twin[other]) {
                 out.strips.extend_from_slice(&[p, r]);
@@ -278,14 +295,8 @@ fn run(
                 twin[other]
             } else {
                 out.strips.push(r);
-                NONE
-            };
-            // Taking `cur` drops its other free neighbours one degree; the next triangle of
-            // the strip is taken at once, so its degree no longer matters.
-            lists.drop_neighbours(&twin, state, if next == NONE { NONE } else { next / 3 });
-            if next == NONE {
                 break;
-            }
+            };
             entry = next;
         }
     }
@@ -296,7 +307,7 @@ fn run(
 /// Fans around vertices with at least `options.fan_threshold` triangles.
 fn fans(
     tris: &[[u32; 3]],
-    nodes: &[Node],
+    twins: &[u32],
     state: &mut [u8],
     lists: &mut Lists,
     vertex_count: usize,
@@ -325,7 +336,7 @@ fn fans(
         // triangle is the next of the twin of the one leaving v here.
         let mut h = h0;
         loop {
-            let g = nodes[(h / 3) as usize].twin[(h % 3) as usize];
+            let g = twins[h as usize];
             if !free(state, g) {
                 break;
             }
@@ -348,7 +359,7 @@ fn fans(
             }
             rim.push(tv[(i + 2) % 3]);
             members += 1;
-            let g = nodes[t as usize].twin[(i + 2) % 3];
+            let g = twins[3 * t as usize + (i + 2) % 3];
             if !free(state, g) || g == first {
                 break;
             }
@@ -369,8 +380,8 @@ fn fans(
         let mut h = first;
         for _ in 0..members {
             let t = h / 3;
-            let g = nodes[t as usize].twin[((h % 3 + 2) % 3) as usize];
-            lists.take(nodes, state, t);
+            let g = twins[(3 * t + (h % 3 + 2) % 3) as usize];
+            lists.take(twins, state, t);
             out.fan_order.push(t);
             h = g;
         }
