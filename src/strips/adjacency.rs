@@ -36,8 +36,9 @@ pub(crate) const ASIDE: u8 = 5;
 /// The triangle adjacency graph of an indexed triangle set (see the module documentation).
 #[derive(Debug, Clone)]
 pub struct Adjacency {
-    /// The twin of each half-edge `3t + i`, as a half-edge id `3u + j`, or `u32::MAX` on a
-    /// boundary (or cut) edge: the paper's triangle records, three twins per triangle.
+    /// The twin of each half-edge, in four slots per triangle (`4t + i`, the fourth unused) as
+    /// a half-edge id `4u + j`, or `u32::MAX` on a boundary (or cut) edge: the paper's
+    /// triangle records. Ids in fours, not threes, spare the stripper's walk a division.
     pub(crate) twins: Vec<u32>,
     /// Number of neighbours of each triangle (its twins), or `ASIDE`: the stripper's starting
     /// state, kept in a small array of its own so that its look-ups stay in cache.
@@ -52,18 +53,21 @@ pub struct Adjacency {
 /// the number of set-aside triangles.
 pub(crate) fn link_twins(vertex_count: usize, triangles: &[[u32; 3]]) -> (Vec<u32>, Vec<u8>, u32) {
     let n = triangles.len();
-    let mut twins = vec![NONE; 3 * n];
+    let mut twins = vec![NONE; 4 * n];
     let mut degree = vec![0u8; n];
     // Two buckets per vertex: half-edges lo -> hi, then hi -> lo. `start[k]` counts bucket k,
     // then (inclusive prefix sums, filled downwards) begins it; it ends at `start[k + 1]`.
     let mut start = vec![0u32; 2 * vertex_count + 1];
     let key = |x: u32, y: u32| 2 * x.min(y) as usize + (x > y) as usize;
+    // Half-edge ids `4t + i` fit 32 bits below 2^30 triangles; beyond, every triangle is
+    // set aside (emitted alone), which keeps the output whole.
+    let ids_fit = n < 1 << 30;
     let mut aside = 0;
     for (t, &[a, b, c]) in triangles.iter().enumerate() {
         let in_range = (a as usize) < vertex_count
             && (b as usize) < vertex_count
             && (c as usize) < vertex_count;
-        if a == b || b == c || a == c || !in_range {
+        if a == b || b == c || a == c || !in_range || !ids_fit {
             degree[t] = ASIDE;
             aside += 1;
             continue;
@@ -83,7 +87,7 @@ pub(crate) fn link_twins(vertex_count: usize, triangles: &[[u32; 3]]) -> (Vec<u3
         if degree[t] == ASIDE {
             continue;
         }
-        let h = 3 * t as u32;
+        let h = 4 * t as u32;
         for (i, (x, y)) in [(a, b), (b, c), (c, a)].into_iter().enumerate() {
             let slot = &mut start[key(x, y)];
             *slot -= 1;
@@ -120,7 +124,7 @@ pub(crate) fn link_twins(vertex_count: usize, triangles: &[[u32; 3]]) -> (Vec<u3
             lowest[hi as usize][1] = NONE;
         }
     }
-    for (d, tw) in degree.iter_mut().zip(twins.chunks_exact(3)) {
+    for (d, tw) in degree.iter_mut().zip(twins.chunks_exact(4)) {
         if *d != ASIDE {
             *d = tw.iter().map(|&g| (g != NONE) as u8).sum();
         }
@@ -149,19 +153,19 @@ impl Adjacency {
         let v = table.v_table();
         let o = table.o_table();
         let n = v.len() / 3;
-        let mut twins = vec![NONE; 3 * n];
+        let mut twins = vec![NONE; 4 * n];
         let mut tris = Vec::with_capacity(n);
         for t in 0..n {
             for i in 0..3 {
                 let d = o[3 * t + (i + 2) % 3];
                 if d != NONE {
-                    twins[3 * t + i] = 3 * (d / 3) + (d % 3 + 1) % 3;
+                    twins[4 * t + i] = 4 * (d / 3) + (d % 3 + 1) % 3;
                 }
             }
             tris.push([v[3 * t], v[3 * t + 1], v[3 * t + 2]]);
         }
         let degree = twins
-            .chunks_exact(3)
+            .chunks_exact(4)
             .map(|tw| tw.iter().filter(|&&g| g != NONE).count() as u8)
             .collect();
         Adjacency {
@@ -190,14 +194,8 @@ impl Adjacency {
 
     /// The twin of half-edge `h` (`3t + i`), `None` on a boundary, a cut edge or out of range.
     pub fn twin(&self, h: u32) -> Option<u32> {
-        let g = *self.twins.get(h as usize)?;
-        (g != NONE).then_some(g)
-    }
-
-    /// The twin of every half-edge `3t + i` (half-edge `i` of triangle `t` runs from its
-    /// vertex `i` to vertex `(i + 1) mod 3`), `u32::MAX` on a boundary or cut edge.
-    pub fn twins(&self) -> &[u32] {
-        &self.twins
+        let g = *self.twins.get(4 * (h / 3) as usize + (h % 3) as usize)?;
+        (g != NONE).then_some(3 * (g / 4) + g % 4)
     }
 
     /// The triangles, as given.
@@ -221,7 +219,7 @@ mod tests {
         rng.shuffle(&mut torus);
         for (vertex_count, tris) in [(40, soup), (torus.len(), torus)] {
             let (twins, degree, _) = link_twins(vertex_count, &tris);
-            for (tw, &d) in twins.chunks_exact(3).zip(&degree) {
+            for (tw, &d) in twins.chunks_exact(4).zip(&degree) {
                 if d != ASIDE {
                     assert_eq!(d as usize, tw.iter().filter(|&&g| g != NONE).count());
                 }

@@ -65,7 +65,7 @@ impl Lists {
         if g == NONE {
             return;
         }
-        let u = g / 3;
+        let u = g / 4;
         let d = state[u as usize];
         if d <= 3 && u != skip {
             // A free neighbour shares an edge with the taken triangle: its degree is at least
@@ -111,13 +111,13 @@ impl Lists {
 /// The twins of triangle `t`'s three half-edges.
 #[inline(always)]
 fn twins_of(twins: &[u32], t: u32) -> [u32; 3] {
-    let h = 3 * t as usize;
+    let h = 4 * t as usize;
     [twins[h], twins[h + 1], twins[h + 2]]
 }
 
 #[inline(always)]
 fn free(state: &[u8], g: u32) -> bool {
-    g != NONE && state[(g / 3) as usize] <= 3
+    g != NONE && state[(g / 4) as usize] <= 3
 }
 
 /// Strips `adj` with `options`, keeping the best of the samples.
@@ -240,7 +240,7 @@ fn run(
             if !free(state, g) {
                 continue;
             }
-            let d = state[(g / 3) as usize];
+            let d = state[(g / 4) as usize];
             if d < best_degree || (d == best_degree && sample > 0 && rng.below(2) == 0) {
                 best = i as u32;
                 best_degree = d;
@@ -267,10 +267,10 @@ fn run(
         // The strip's last two indices.
         let (mut p, mut q) = (tri[i], tri[(i + 1) % 3]);
         loop {
-            let cur = entry / 3;
+            let cur = entry / 4;
             state[cur as usize] = DONE;
             out.strip_order.push(cur);
-            let k = (entry % 3) as usize;
+            let k = (entry % 4) as usize;
             let tv = tris[cur as usize];
             let r = tv[(k + 2) % 3];
             // The entry half-edge runs tv[k] -> tv[k+1]; the natural exit edge joins q and r.
@@ -286,7 +286,7 @@ fn run(
             let next = if free(state, twin[natural]) {
                 out.strips.push(r);
                 (p, q) = (q, r);
-                lists.drop_across(twin[other], state, twin[natural] / 3);
+                lists.drop_across(twin[other], state, twin[natural] / 4);
                 twin[natural]
             } else if free(state, twin[other]) {
                 out.strips.extend_from_slice(&[p, r]);
@@ -322,14 +322,14 @@ fn fans(
         }
         for (i, &v) in tri.iter().enumerate() {
             count[v as usize] += 1;
-            corner[v as usize] = 3 * t as u32 + i as u32;
+            corner[v as usize] = 4 * t as u32 + i as u32;
         }
     }
-    let half = |h: u32, step: u32| 3 * (h / 3) + (h % 3 + step) % 3;
+    let half = |h: u32, step: u32| 4 * (h / 4) + (h % 4 + step) % 3;
     let mut rim = Vec::new();
     for v in 0..vertex_count {
         let h0 = corner[v];
-        if count[v] < options.fan_threshold || h0 == NONE || state[(h0 / 3) as usize] > 3 {
+        if count[v] < options.fan_threshold || h0 == NONE || state[(h0 / 4) as usize] > 3 {
             continue;
         }
         // Back to the first free triangle of the fan: the half-edge leaving v in the previous
@@ -351,15 +351,15 @@ fn fans(
         let mut members = 0u32;
         let first = h;
         loop {
-            let t = h / 3;
+            let t = h / 4;
             let tv = tris[t as usize];
-            let i = (h % 3) as usize;
+            let i = (h % 4) as usize;
             if members == 0 {
                 rim.push(tv[(i + 1) % 3]);
             }
             rim.push(tv[(i + 2) % 3]);
             members += 1;
-            let g = twins[3 * t as usize + (i + 2) % 3];
+            let g = twins[4 * t as usize + (i + 2) % 3];
             if !free(state, g) || g == first {
                 break;
             }
@@ -379,8 +379,8 @@ fn fans(
         out.fans.extend_from_slice(&rim);
         let mut h = first;
         for _ in 0..members {
-            let t = h / 3;
-            let g = twins[(3 * t + (h % 3 + 2) % 3) as usize];
+            let t = h / 4;
+            let g = twins[(4 * t + (h % 4 + 2) % 3) as usize];
             lists.take(twins, state, t);
             out.fan_order.push(t);
             h = g;
