@@ -17,7 +17,8 @@
 //! array (so the whole pass stays linear, and takes almost no data-dependent branch).
 //!
 //! **Set aside** (emitted later as single triangles): triangles with a repeated vertex or a
-//! vertex out of range. **Left unlinked:** on each edge, the lowest half-edge of one direction
+//! vertex out of range, and every triangle of a set of 2^30 or more (whose half-edge ids
+//! would not fit 32 bits). **Left unlinked:** on each edge, the lowest half-edge of one direction
 //! pairs with the lowest of the other; a half-edge that repeats a direction (a duplicate
 //! triangle, an inconsistently oriented neighbour, a third triangle on the edge) gets no twin.
 //! So every twin joins two triangles along an edge used once in each direction. *Deviation:*
