@@ -11,7 +11,7 @@ pub const JSON: u8 = 0;
 /// Labels encoding 1: range coded (FORMAT.md §3.10.2).
 pub const CODED: u8 = 1;
 
-/// The most bytes the labels of a `J`-byte coded stream may decode to ([V51]): a coded name
+/// The most bytes the labels of a `J`-byte coded stream may decode to (V51): a coded name
 /// may be referred to many times, and this keeps what a reader allocates in proportion to
 /// the input.
 pub fn decoded_bound(coded_len: u32) -> u64 {

@@ -93,7 +93,7 @@ pub fn edgebreaker(data: &[u8]) {
 /// and whose walks end ([`walk_in_range`]), and that decodes to a mesh without panicking.
 /// [`open_verified`]: the same error when [`open`] fails; else an error of a semantic rule,
 /// or a container that decodes to a mesh that validates and whose opposites face each other
-/// ([`walk`]). (Checksums are skipped under `cfg(fuzzing)` so that the fuzzer reaches the
+/// (`walk`). (Checksums are skipped under `cfg(fuzzing)` so that the fuzzer reaches the
 /// section parsers.)
 pub fn container(data: &[u8]) {
     let limits = Limits::default();

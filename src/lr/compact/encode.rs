@@ -22,7 +22,7 @@ use crate::words::{Units, Words};
 
 impl CompactLr {
     /// Builds the bit-efficient LR with the period of `options` whose rings promise the
-    /// smallest encoding ([`choose_period`]).
+    /// smallest encoding (`choose_period`).
     ///
     /// # Errors
     /// [`Error::Unsupported`] when the mesh exceeds the LR's id space.
