@@ -1,13 +1,14 @@
 //! The triangle adjacency structure of Reuter, Behr and Alexa, "An Improved Adjacency Data
 //! Structure for Fast Triangle Stripping" (JGT 2005), with indices in place of pointers.
 //!
-//! Every triangle is one record holding its three half-edges, that is their twins (three
-//! consecutive entries of one array).
+//! Every triangle is one record holding its three half-edges, that is their twins (four
+//! slots of one array, the fourth unused).
 //! *Deviation:* the stripping state and the degree lists live apart from the records, in a
 //! byte per triangle and stacks (see the stripper), so that the stripper's look-ups at
-//! neighbours stay in a small array. Half-edge `3t + i` of triangle `t = [v0, v1, v2]` runs
-//! from `v_i` to `v_(i+1) mod 3`; its triangle is `h / 3` and its next half-edge
-//! `3t + (i + 1) mod 3`, so neither needs storing.
+//! neighbours stay in a small array. Half-edge `i` of triangle `t = [v0, v1, v2]` runs from
+//! `v_i` to `v_(i+1) mod 3`. Inside the module and the stripper its id is `4t + i`, so that
+//! its triangle is `h / 4` and its next half-edge `4t + (i + 1) mod 3` (neither stored, and
+//! no division by three); [`Adjacency::twin`] speaks the public ids `3t + i`.
 //!
 //! # Construction (linear time)
 //!
@@ -127,10 +128,15 @@ pub(crate) fn link_twins(vertex_count: usize, triangles: &[[u32; 3]]) -> (Vec<u3
     }
     for (d, tw) in degree.iter_mut().zip(twins.chunks_exact(4)) {
         if *d != ASIDE {
-            *d = tw.iter().map(|&g| (g != NONE) as u8).sum();
+            *d = twin_count(tw);
         }
     }
     (twins, degree, aside)
+}
+
+/// A triangle's degree: how many of its four twin slots hold a twin.
+fn twin_count(slots: &[u32]) -> u8 {
+    slots.iter().map(|&g| (g != NONE) as u8).sum()
 }
 
 impl Adjacency {
@@ -165,10 +171,7 @@ impl Adjacency {
             }
             tris.push([v[3 * t], v[3 * t + 1], v[3 * t + 2]]);
         }
-        let degree = twins
-            .chunks_exact(4)
-            .map(|tw| tw.iter().filter(|&&g| g != NONE).count() as u8)
-            .collect();
+        let degree = twins.chunks_exact(4).map(twin_count).collect();
         Adjacency {
             twins,
             tris,

@@ -325,6 +325,7 @@ fn fans(
             corner[v as usize] = 4 * t as u32 + i as u32;
         }
     }
+    // The half-edge `step` after `h` in its triangle.
     let half = |h: u32, step: u32| 4 * (h / 4) + (h % 4 + step) % 3;
     let mut rim = Vec::new();
     for v in 0..vertex_count {
@@ -359,7 +360,7 @@ fn fans(
             }
             rim.push(tv[(i + 2) % 3]);
             members += 1;
-            let g = twins[4 * t as usize + (i + 2) % 3];
+            let g = twins[half(h, 2) as usize];
             if !free(state, g) || g == first {
                 break;
             }
@@ -380,7 +381,7 @@ fn fans(
         let mut h = first;
         for _ in 0..members {
             let t = h / 4;
-            let g = twins[(4 * t + (h % 4 + 2) % 3) as usize];
+            let g = twins[half(h, 2) as usize];
             lists.take(twins, state, t);
             out.fan_order.push(t);
             h = g;
