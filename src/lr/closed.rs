@@ -8,16 +8,16 @@ use crate::ops::CornerOps;
 /// The corner table closed by dummy vertices and triangles over each boundary loop. The
 /// table's `V` and `O` are borrowed, not copied (they are most of an encode's memory): the
 /// dummy triangles live in arrays of their own, and a boundary corner's opposite (`NONE` in
-/// the table) is found by its rank among the boundary corners.
+/// the table) is found by its rank among the boundary corners ([`BoundaryRank`]).
 pub(super) struct Closed<'a> {
     real_v: &'a [u32],
     real_o: &'a [u32],
     /// `V` and `O` of the dummy triangles, from corner `3 · real_triangles` on.
     dummy_v: Vec<u32>,
     dummy_o: Vec<u32>,
-    /// The boundary corners in increasing order: the `k`-th faces corner 2 of dummy
+    /// The rank of each boundary corner among them: the `k`-th faces corner 2 of dummy
     /// triangle `real_triangles + k`.
-    boundary: Vec<u32>,
+    boundary: BoundaryRank,
     pub(super) real_triangles: u32,
     pub(super) real_vertices: u32,
     /// Real and dummy vertices.
@@ -50,6 +50,7 @@ impl<'a> Closed<'a> {
         let boundary: Vec<u32> = (0..real_v.len() as u32)
             .filter(|&c| real_o[c as usize] == NONE)
             .collect();
+        let ranks = BoundaryRank::new(real_o);
         let total = real_v.len() + 3 * boundary.len();
         if total >= (NONE / 2) as usize {
             return Err(Error::Unsupported("mesh too large for LR".into()));
@@ -67,7 +68,7 @@ impl<'a> Closed<'a> {
             incoming[real_v[prev3(c) as usize] as usize] = c;
         }
         // Dummy triangle k (of boundary corner k), at 3k in the dummy arrays.
-        let rank = |c: u32| boundary.binary_search(&c).expect("a boundary corner");
+        let rank = |c: u32| ranks.rank(c) as usize;
         let base_corner = 3 * real_triangles;
         for (k, &c) in boundary.iter().enumerate() {
             let (a, b) = (real_v[next3(c) as usize], real_v[prev3(c) as usize]);
@@ -100,7 +101,7 @@ impl<'a> Closed<'a> {
             real_o,
             dummy_v: v,
             dummy_o: o,
-            boundary,
+            boundary: ranks,
             real_triangles,
             real_vertices,
             total_vertices: next_dummy_vertex,
@@ -126,10 +127,7 @@ impl<'a> Closed<'a> {
     #[inline(always)]
     pub(super) fn o(&self, c: u32) -> u32 {
         match self.real_o.get(c as usize) {
-            Some(&NONE) => {
-                let k = self.boundary.binary_search(&c).expect("a boundary corner");
-                3 * (self.real_triangles + k as u32) + 2
-            }
+            Some(&NONE) => 3 * (self.real_triangles + self.boundary.rank(c)) + 2,
             Some(&d) => d,
             None => self.dummy_o[c as usize - self.real_o.len()],
         }
@@ -138,5 +136,66 @@ impl<'a> Closed<'a> {
     #[inline]
     pub(super) fn right(&self, c: u32) -> u32 {
         self.o(prev3(c))
+    }
+}
+
+/// The rank of a boundary corner (one whose opposite is `NONE`) among the boundary corners,
+/// in constant time: a bit per corner, set on the boundary ones, and per word of 64 bits the
+/// number set before it (0.6 bytes per triangle; a binary search over the boundary corners
+/// took a fifth of the ring construction on a mesh with many holes).
+struct BoundaryRank {
+    bits: Vec<u64>,
+    before: Vec<u32>,
+}
+
+impl BoundaryRank {
+    fn new(o: &[u32]) -> BoundaryRank {
+        let mut bits = vec![0u64; o.len().div_ceil(64)];
+        for (c, _) in o.iter().enumerate().filter(|(_, &d)| d == NONE) {
+            bits[c / 64] |= 1 << (c % 64);
+        }
+        let mut total = 0;
+        let before = bits
+            .iter()
+            .map(|w| {
+                let b = total;
+                total += w.count_ones();
+                b
+            })
+            .collect();
+        BoundaryRank { bits, before }
+    }
+
+    /// The number of boundary corners below `c` (the rank of `c` when it is one).
+    #[inline(always)]
+    fn rank(&self, c: u32) -> u32 {
+        let (w, b) = ((c / 64) as usize, c % 64);
+        self.before[w] + (self.bits[w] & ((1u64 << b) - 1)).count_ones()
+    }
+}
+
+#[cfg(all(test, feature = "generate"))]
+mod tests {
+    use super::*;
+    use crate::generate::{self, Rng};
+
+    /// The constant-time rank counts the boundary corners before each corner, on a torus with
+    /// holes, a soup (almost every corner on the boundary) and a closed torus (none).
+    #[test]
+    fn boundary_rank_counts_the_boundary_corners_before() {
+        let mut rng = Rng::new(9);
+        let mut holed = generate::irregular_torus(3_000, 1);
+        generate::punch_holes(&mut holed, 200, &mut rng);
+        let soup = generate::soup(500, 2_000, &mut rng);
+        for mesh in [holed, soup, generate::torus(10, 12)] {
+            let ct = CornerTable::from_mesh(&mesh).expect("a valid mesh");
+            let o = ct.o_table();
+            let ranks = BoundaryRank::new(o);
+            let mut before = 0;
+            for (c, &d) in o.iter().enumerate() {
+                assert_eq!(ranks.rank(c as u32), before, "corner {c}");
+                before += (d == NONE) as u32;
+            }
+        }
     }
 }
