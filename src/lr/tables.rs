@@ -77,18 +77,26 @@ pub(crate) fn ring_of_by_bits<T: LrLayout + ?Sized>(t: &T, v: u32) -> usize {
 /// Ring bit vector and ranks for rings starting at `starts` (which ends with `m_r`).
 pub(crate) fn ring_bits(starts: &[u32]) -> (Vec<u32>, Vec<u32>) {
     let m_r = *starts.last().unwrap_or(&0) as usize;
-    let mut last = vec![0u32; m_r.div_ceil(32)];
-    for w in starts.windows(2) {
-        let v = w[1] as usize - 1;
-        last[v / 32] |= 1 << (v % 32);
+    bits_and_ranks(m_r, starts.windows(2).map(|w| w[1] as usize - 1))
+}
+
+/// A bit vector of `len` bits, 32 to a word, with the bits `set` (each below `len`), and per
+/// word the number of bits set in the words before it.
+pub(crate) fn bits_and_ranks(
+    len: usize,
+    set: impl IntoIterator<Item = usize>,
+) -> (Vec<u32>, Vec<u32>) {
+    let mut bits = vec![0u32; len.div_ceil(32)];
+    for i in set {
+        bits[i / 32] |= 1 << (i % 32);
     }
-    let mut rank = Vec::with_capacity(last.len());
+    let mut rank = Vec::with_capacity(bits.len());
     let mut count = 0;
-    for word in &last {
+    for word in &bits {
         rank.push(count);
         count += word.count_ones();
     }
-    (last, rank)
+    (bits, rank)
 }
 
 impl<W: Words> LrTables<W> {
