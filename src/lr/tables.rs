@@ -269,10 +269,24 @@ pub trait LrLayout {
             };
         }
         if self.is_last(v) {
-            self.ring_start(self.ring_of(v))
+            self.first_of_ring(v)
         } else {
             v + 1
         }
+    }
+
+    /// The first vertex of `v`'s ring. Out of line, as is [`last_of_ring`](Self::last_of_ring):
+    /// only a ring's end needs its rank, and every operator inlines the ring steps several
+    /// times over.
+    #[inline(never)]
+    fn first_of_ring(&self, v: u32) -> u32 {
+        self.ring_start(self.ring_of(v))
+    }
+
+    /// The last vertex of `v`'s ring.
+    #[inline(never)]
+    fn last_of_ring(&self, v: u32) -> u32 {
+        self.ring_start(self.ring_of(v) + 1) - 1
     }
 
     /// `v.p`: the previous vertex along `v`'s ring.
@@ -286,10 +300,20 @@ pub trait LrLayout {
             };
         }
         if v == 0 || self.is_last(v - 1) {
-            self.ring_start(self.ring_of(v) + 1) - 1
+            self.last_of_ring(v)
         } else {
             v - 1
         }
+    }
+
+    /// `v.n.n`: with one ring and no wrap, `v + 2` after one test (every canonical check
+    /// compares a tip with it).
+    #[inline(always)]
+    fn ring_next_next(&self, v: u32) -> u32 {
+        if self.ring_count() == 1 && v < self.ring_vertices().saturating_sub(2) {
+            return v + 2;
+        }
+        self.ring_next(self.ring_next(v))
     }
 
     /// The slot's third vertex: `v.n`, or `v.n.n` in a wart slot (the skipped ring).
@@ -303,11 +327,10 @@ pub trait LrLayout {
     /// Zipper, does it once).
     #[inline(always)]
     fn far_given(&self, v: u32, wart: bool) -> u32 {
-        let n = self.ring_next(v);
         if wart {
-            self.ring_next(n)
+            self.ring_next_next(v)
         } else {
-            n
+            self.ring_next(v)
         }
     }
 
@@ -320,7 +343,7 @@ pub trait LrLayout {
     /// [`redundant`](Self::redundant) for a slot whose tip is known.
     #[inline(always)]
     fn redundant_given(&self, v: u32, side: usize, tip: u32) -> bool {
-        tip == self.ring_next(self.ring_next(v)) && !self.irregular(v, side) && !self.wart(v, side)
+        tip == self.ring_next_next(v) && !self.irregular(v, side) && !self.wart(v, side)
     }
 
     /// Maps a corner of a redundant T2 copy to the same corner of the canonical slot.

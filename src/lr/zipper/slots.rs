@@ -328,7 +328,7 @@ impl<W: Words> ZipperTables<W> {
             true => implied_wart(
                 self.next_is_t2(v, side, group),
                 word & VALUE,
-                self.ring_next(self.ring_next(v)),
+                self.ring_next_next(v),
             ),
         }
     }
@@ -368,7 +368,7 @@ impl<W: Words> ZipperTables<W> {
             || self.four_sides != 0 && plane_bit(self.four_sides, slot.bit) != 0
             || self.before_t2(v, side, slot.group())
         {
-            self.ring_next(self.ring_next(v))
+            self.ring_next_next(v)
         } else {
             NULL
         }
