@@ -51,7 +51,7 @@ mod tables;
 pub mod zipper;
 
 pub use compact::{CompactLr, CompactOptions, CompactStats, CompactTables};
-pub(crate) use tables::{bits_and_ranks, boundaries_on_ring_given, ring_bits};
+pub(crate) use tables::{bits_and_ranks, boundaries_on_ring_given, one_ring_next_next, ring_bits};
 pub use tables::{LrLayout, LrTables, IRREGULAR, NULL, VALUE, WART};
 pub use zipper::{Zipper, ZipperStats, ZipperTables};
 

@@ -74,6 +74,14 @@ pub(crate) fn ring_of_by_bits<T: LrLayout + ?Sized>(t: &T, v: u32) -> usize {
     (t.ring_rank_word(v as usize / 32) + word.count_ones()) as usize
 }
 
+/// `v.n.n` for ring vertex `v` when the ring is the only one, of `m_r` vertices (at least 4,
+/// as every ring): `v + 2`, wrapped without a branch (the passes over every slot stay
+/// vectorizable).
+#[inline(always)]
+pub(crate) fn one_ring_next_next(v: u32, m_r: u32) -> u32 {
+    (v + 2) - m_r * (v + 2 >= m_r) as u32
+}
+
 /// Ring bit vector and ranks for rings starting at `starts` (which ends with `m_r`).
 pub(crate) fn ring_bits(starts: &[u32]) -> (Vec<u32>, Vec<u32>) {
     let m_r = *starts.last().unwrap_or(&0) as usize;
@@ -306,12 +314,12 @@ pub trait LrLayout {
         }
     }
 
-    /// `v.n.n`: with one ring and no wrap, `v + 2` after one test (every canonical check
-    /// compares a tip with it).
+    /// `v.n.n` of ring vertex `v`: with one ring, `v + 2` wrapped without a branch (every
+    /// canonical check compares a tip with it).
     #[inline(always)]
     fn ring_next_next(&self, v: u32) -> u32 {
-        if self.ring_count() == 1 && v < self.ring_vertices().saturating_sub(2) {
-            return v + 2;
+        if self.ring_count() == 1 {
+            return one_ring_next_next(v, self.ring_vertices());
         }
         self.ring_next(self.ring_next(v))
     }

@@ -4,8 +4,7 @@
 
 use super::fields::Fields;
 use super::lr_rules::{
-    check_rings, check_vertex_corners, one_ring_next_next, ring_slot_flags, verified_boundaries,
-    SlotMap, CANONICAL,
+    check_rings, check_vertex_corners, ring_slot_flags, verified_boundaries, SlotMap, CANONICAL,
 };
 use super::Sections;
 use crate::corner_table::NONE;
@@ -13,6 +12,7 @@ use crate::error::{Result, Rule};
 use crate::format::layout::{LrtbHeader, LR_BOUNDARIES_ON_RING};
 use crate::format::Tag;
 use crate::ids::Corner;
+use crate::lr::one_ring_next_next;
 use crate::lr::{LrTables, IRREGULAR, NULL, VALUE, WART};
 use crate::words::{LeWords, Words};
 

@@ -156,13 +156,6 @@ pub(super) fn slot_flag_masks(
     (canonical, redundant | wart)
 }
 
-/// `v.n.n` for ring vertex `v` when the ring is the only one, of `m_r` vertices: `v + 2`,
-/// wrapped without a branch (the passes over every slot stay vectorizable).
-#[inline(always)]
-pub(super) fn one_ring_next_next(v: u32, m_r: u32) -> u32 {
-    (v + 2) - m_r * (v + 2 >= m_r) as u32
-}
-
 /// The flags of slot `(v, side)` read through the layout's operators; `nn` is `v.n.n`.
 #[inline]
 pub(super) fn layout_slot_flags<T: LrLayout>(tables: &T, v: u32, side: usize, nn: u32) -> u8 {
@@ -179,7 +172,7 @@ impl SlotMap {
         let flags: Vec<u8> = (0..2 * m_r as usize)
             .map(|t| {
                 let v = (t / 2) as u32;
-                layout_slot_flags(tables, v, t % 2, tables.ring_next(tables.ring_next(v)))
+                layout_slot_flags(tables, v, t % 2, tables.ring_next_next(v))
             })
             .collect();
         SlotMap::with_flags(flags, m_r, tables.t0_count())

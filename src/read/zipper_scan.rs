@@ -159,7 +159,7 @@ impl Neighbours {
         let mut nn: [u32; 128] = std::array::from_fn(|bit| self.first + bit as u32 / 2 + 2);
         for k in BitsSet(self.special) {
             let v = self.first + k;
-            let value = t.ring_next(t.ring_next(v));
+            let value = t.ring_next_next(v);
             nn[2 * k as usize] = value;
             nn[2 * k as usize + 1] = value;
         }
@@ -387,7 +387,7 @@ pub(super) fn scan_slots(t: &Tables) -> Option<(SlotBits, u64)> {
             // (a few in a thousand slots are before one).
             true => Bits128(stored & n.next_is_t2).fold(0, |warts, bit| {
                 let v = first + bit as u32 / 2;
-                let wart = implied_wart(true, chained[bit], t.ring_next(t.ring_next(v)));
+                let wart = implied_wart(true, chained[bit], t.ring_next_next(v));
                 warts | (wart as u128) << bit
             }),
         };

@@ -361,7 +361,7 @@ fn stored_corners(t: &LrTables<Vec<u32>>, v: u32) -> [Option<u32>; 4] {
             t.inferred_opposite(v, i) != a,
             t.inferred_opposite(v, i + 2) != b,
         ];
-        let looks_redundant = !t.wart(v, side) && t.tip(v, side) == t.ring_next(t.ring_next(v));
+        let looks_redundant = !t.wart(v, side) && t.tip(v, side) == t.ring_next_next(v);
         let keep = if looks_redundant || fails == [false, false] {
             [true, true]
         } else {

@@ -52,7 +52,7 @@ fn symbol(
         return (IRREGULAR_SLOT, tip, Some(stored));
     }
     let delta = chain.wrapping_sub(tip);
-    let next_next = t.ring_next(t.ring_next(v));
+    let next_next = t.ring_next_next(v);
     let wart = entry & WART != 0;
     if fours == Some(true) && !wart && tip == next_next {
         return (NEXT_NEXT_OR_NULL, chain, None);
@@ -198,7 +198,7 @@ pub(super) fn encode(t: &LrTables<Vec<u32>>) -> Result<ZipperTables<Vec<u32>>> {
                 wart_deltas |= before_t2 && (s < DELTAS || four || right_rule_5);
                 if let Some(word) = word {
                     // IMPLIED_WARTS holds when every stored slot's flag is what it implies.
-                    let next_next = t.ring_next(t.ring_next(v));
+                    let next_next = t.ring_next_next(v);
                     implied_warts &= (word & WART != 0) == (before_t2 && word & VALUE != next_next);
                 }
                 match s {
