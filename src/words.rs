@@ -13,6 +13,24 @@ pub trait Words {
     fn array<const N: usize>(&self, i: usize) -> [u32; N] {
         std::array::from_fn(|k| self.at(i + k))
     }
+    /// [`array`](Self::array), or `None` when the words run past the end (one bounds check
+    /// where the storage allows it, instead of a test of the count and the array's own).
+    #[inline(always)]
+    fn try_array<const N: usize>(&self, i: usize) -> Option<[u32; N]> {
+        (i + N <= self.count()).then(|| self.array(i))
+    }
+    /// Words `k` and `k + 1` as the low and high halves of a `u64`, the high half 0 when `k`
+    /// is the last word: a bit field that may run into the next word, read with one bounds
+    /// check where the storage allows it.
+    #[inline(always)]
+    fn pair(&self, k: usize) -> u64 {
+        let next = if k + 1 < self.count() {
+            self.at(k + 1)
+        } else {
+            0
+        };
+        u64::from(self.at(k)) | u64::from(next) << 32
+    }
 }
 
 impl Words for Vec<u32> {
@@ -44,19 +62,35 @@ impl Words for LeWords<'_> {
     }
     #[inline(always)]
     fn array<const N: usize>(&self, i: usize) -> [u32; N] {
-        let bytes = &self.0[4 * i..4 * (i + N)];
-        std::array::from_fn(|k| {
-            u32::from_le_bytes([
-                bytes[4 * k],
-                bytes[4 * k + 1],
-                bytes[4 * k + 2],
-                bytes[4 * k + 3],
-            ])
-        })
+        words_of(&self.0[4 * i..4 * (i + N)])
+    }
+    #[inline(always)]
+    fn try_array<const N: usize>(&self, i: usize) -> Option<[u32; N]> {
+        self.0.get(4 * i..4 * (i + N)).map(words_of)
+    }
+    #[inline(always)]
+    fn pair(&self, k: usize) -> u64 {
+        match self.0.get(4 * k..4 * k + 8) {
+            Some(b) => u64::from_le_bytes(b.try_into().expect("eight bytes")),
+            None => u64::from(self.at(k)),
+        }
     }
     fn count(&self) -> usize {
         self.0.len() / 4
     }
+}
+
+/// The little-endian words of `bytes` (`4N` of them).
+#[inline(always)]
+fn words_of<const N: usize>(bytes: &[u8]) -> [u32; N] {
+    std::array::from_fn(|k| {
+        u32::from_le_bytes([
+            bytes[4 * k],
+            bytes[4 * k + 1],
+            bytes[4 * k + 2],
+            bytes[4 * k + 3],
+        ])
+    })
 }
 
 /// Words read in place from the file, or decoded when the container was opened (a coded

@@ -236,6 +236,12 @@ pub trait LrLayout {
     fn tip_and_wart(&self, v: u32, side: usize) -> (u32, bool) {
         (self.tip(v, side), self.wart(v, side))
     }
+    /// Whether the tip of right slot `v` is [`NULL`] (no right triangle: a boundary ring
+    /// edge): a layout whose tips take decoding (the Zipper) tells it from less.
+    #[inline(always)]
+    fn right_is_null(&self, v: u32) -> bool {
+        self.tip(v, RIGHT) == NULL
+    }
     /// The stored opposite, if any, of a transversal corner of slot `(v, side)`: of its
     /// first (`8v` or `8v+4`) for `second = 0`, of its second (`8v+2` or `8v+6`) for
     /// `second = 1`.
@@ -583,7 +589,7 @@ impl<T: LrLayout> CornerOps for T {
         // v's corner in u's left triangle; with every boundary on the ring, any other ring
         // vertex has a closed fan; otherwise the fan is walked back to its start.
         let u = self.ring_prev(v.0);
-        let boundary_before = self.tip(u, RIGHT) == NULL;
+        let boundary_before = self.right_is_null(u);
         if boundary_before && !self.wart(u, LEFT) {
             return Some(Corner(self.canonical(8 * u + 2)));
         }

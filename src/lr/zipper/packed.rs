@@ -387,12 +387,7 @@ impl<W: Words> Words for Packed<W> {
         let (k, s) = ((bit / 32) as usize, (bit % 32) as u32);
         // Both words whether or not the field reaches the second (a branch on it is taken
         // at random); the last word has none after it.
-        let next = if k + 1 < self.words.count() {
-            self.words.at(k + 1)
-        } else {
-            0
-        };
-        let f = (self.words.at(k) as u64 | (next as u64) << 32) >> s;
+        let f = self.words.pair(k) >> s;
         field.decode(f as u32 & low_bits(field.width as u32))
     }
 

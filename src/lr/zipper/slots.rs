@@ -176,8 +176,7 @@ impl<W: Words> ZipperTables<W> {
     /// `bit`.
     #[inline(always)]
     pub(crate) fn planes_until(&self, block: usize, last: u32, bit: u32) -> Slot {
-        if PLANE_WORDS * (block + 1) <= self.planes.count() {
-            let w: [u32; PLANE_WORDS] = self.planes.array(PLANE_WORDS * block);
+        if let Some(w) = self.planes.try_array::<PLANE_WORDS>(PLANE_WORDS * block) {
             let plane = |k: usize| {
                 w[k] as u128
                     | (w[3 + k] as u128) << 32

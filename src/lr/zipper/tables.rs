@@ -10,7 +10,7 @@ use super::{
     STORES_BOTH, STORES_FIRST, STORES_SECOND,
 };
 use crate::corner_table::NONE;
-use crate::lr::tables::{is_last_by_bits, ring_of_by_bits, LrLayout, VALUE};
+use crate::lr::tables::{is_last_by_bits, ring_of_by_bits, LrLayout, RIGHT, VALUE};
 use crate::words::Words;
 
 /// The Zipper tables over words `W` (vectors after construction, little-endian bytes in a
@@ -324,6 +324,16 @@ impl<W: Words> LrLayout for ZipperTables<W> {
                 )
             }
         }
+    }
+    /// From the symbol alone: only a right slot of symbol 5 that is not a four and not
+    /// before a canonical T2 has a `NULL` tip (every other tip is below `m`, FORMAT.md \[V58\]).
+    #[inline]
+    fn right_is_null(&self, v: u32) -> bool {
+        let slot = 2 * v as usize + RIGHT;
+        let group = self.group(slot / 32);
+        group_symbol(group, slot % 32) == NEXT_NEXT_OR_NULL
+            && self.four_sides & LEFT_SLOTS << RIGHT == 0
+            && !self.before_t2(v, RIGHT, group)
     }
     #[inline]
     fn wart(&self, v: u32, side: usize) -> bool {
