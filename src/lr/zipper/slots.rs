@@ -8,7 +8,7 @@ use super::{
     BLOCK_SHIFT, COMPACT_SUPER_SHIFT, FOUR, HEAD_WORDS, PLANE_WORDS, PREVIOUS, RECORD_WORDS,
     SHORT_HEAD_WORDS, SUPER_SHIFT,
 };
-use crate::lr::tables::{LrLayout, LEFT, NULL, VALUE, WART};
+use crate::lr::tables::{LrLayout, LEFT, NULL, RIGHT, VALUE, WART};
 use crate::words::Words;
 
 /// The bits of the left slots of a block (slot `2i + side`).
@@ -363,13 +363,20 @@ impl<W: Words> ZipperTables<W> {
     pub(crate) fn ring_rule_tip(&self, slot: &Slot, v: u32, side: usize, symbol: u32) -> u32 {
         if symbol == PREVIOUS {
             self.ring_prev(v)
-        } else if side == LEFT
-            || self.four_sides != 0 && plane_bit(self.four_sides, slot.bit) != 0
-            || self.before_t2(v, side, slot.group())
-        {
-            self.ring_next_next(v)
-        } else {
+        } else if self.rule_5_is_null(v, side, slot.group()) {
             NULL
+        } else {
+            self.ring_next_next(v)
         }
+    }
+
+    /// Whether a slot of symbol 5 that is not a four has the tip `NULL` by the ring rules: a
+    /// right slot, when the right side has no fours and the slot does not come before a
+    /// canonical T2 (`v.n.n` otherwise). `group` as for [`before_t2`](Self::before_t2).
+    #[inline(always)]
+    pub(crate) fn rule_5_is_null(&self, v: u32, side: usize, group: [u32; 3]) -> bool {
+        side == RIGHT
+            && self.four_sides & LEFT_SLOTS << RIGHT == 0
+            && !self.before_t2(v, side, group)
     }
 }

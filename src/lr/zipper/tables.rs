@@ -325,15 +325,13 @@ impl<W: Words> LrLayout for ZipperTables<W> {
             }
         }
     }
-    /// From the symbol alone: only a right slot of symbol 5 that is not a four and not
-    /// before a canonical T2 has a `NULL` tip (every other tip is below `m`, FORMAT.md \[V58\]).
+    /// From the symbol alone: only a slot of symbol 5 can have a `NULL` tip (every other
+    /// tip is below `m`, FORMAT.md \[V58\]), and with right fours no right slot does.
     #[inline]
     fn right_is_null(&self, v: u32) -> bool {
         let slot = 2 * v as usize + RIGHT;
         let group = self.group(slot / 32);
-        group_symbol(group, slot % 32) == NEXT_NEXT_OR_NULL
-            && self.four_sides & LEFT_SLOTS << RIGHT == 0
-            && !self.before_t2(v, RIGHT, group)
+        group_symbol(group, slot % 32) == NEXT_NEXT_OR_NULL && self.rule_5_is_null(v, RIGHT, group)
     }
     #[inline]
     fn wart(&self, v: u32, side: usize) -> bool {
