@@ -68,7 +68,7 @@ pub struct Rule(pub u8);
 
 impl Rule {
     /// The highest rule number this reader checks.
-    pub const LAST: Rule = Rule(60);
+    pub const LAST: Rule = Rule(61);
 
     /// Every rule this reader checks, in order.
     pub fn all() -> impl Iterator<Item = Rule> {

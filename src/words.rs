@@ -157,3 +157,22 @@ impl Units for LeUnits<'_> {
         self.0.len() / 2
     }
 }
+
+/// Words that count their reads: the tests that every operator reads a bounded number of
+/// words whatever the mesh.
+#[cfg(test)]
+pub(crate) struct Counting<'a> {
+    pub(crate) words: &'a [u32],
+    pub(crate) reads: &'a std::cell::Cell<usize>,
+}
+
+#[cfg(test)]
+impl Words for Counting<'_> {
+    fn at(&self, i: usize) -> u32 {
+        self.reads.set(self.reads.get() + 1);
+        self.words[i]
+    }
+    fn count(&self) -> usize {
+        self.words.len()
+    }
+}

@@ -266,11 +266,14 @@ fn quantized_round_trip(mesh: &Mesh, normal_bits: u8, texcoord_bits: u8) {
     // same values at every corner.
     round_trip_every_kind_with(mesh, &base, "quantized", |options, bytes, back| {
         let file = lrmesh::open(bytes).unwrap();
-        // 1.4 for LR tables with the boundary flag, 1.3 for normals predicted from their
-        // neighbours alone, else 1.2.
+        // 1.17 for LR tables listing open fans, 1.4 with the boundary flag, 1.3 for normals
+        // predicted from their neighbours alone, else 1.2.
         let flagged = file.lr().is_some_and(|t| t.boundaries_on_ring())
             || file.lr_compact().is_some_and(|t| t.boundaries_on_ring());
-        let minor = if flagged {
+        let listed = file.lr().is_some_and(|t| t.open_fans_listed());
+        let minor = if listed {
+            17
+        } else if flagged {
             4
         } else if file.attributes().iter().any(|a| a.normal_predictor() == 1) {
             3

@@ -444,8 +444,17 @@ fn encode_attribute_quantization_options() {
     let attribute_bytes = |options: &[&str]| {
         let out = scratch(&format!("attributes{}.lrm", options.len()));
         // As given: the spider has triangles written the other way round, whose repair
-        // (section FLIP, version 1.5) would decide the version.
-        let mut args = vec!["encode", &input, "-o", out.to_str().unwrap(), "--no-orient"];
+        // (section FLIP, version 1.5) would decide the version; as strips, since the LR of
+        // a mesh with holes lists its open fans (`LRTB` flag `OPEN_FANS`, version 1.17).
+        let mut args = vec![
+            "encode",
+            &input,
+            "-o",
+            out.to_str().unwrap(),
+            "--no-orient",
+            "--connectivity",
+            "strips",
+        ];
         args.extend_from_slice(options);
         let status = lrmesh(&args);
         assert!(

@@ -6,13 +6,13 @@
 mod common;
 
 use common::forge::*;
-use lrmesh::format::layout::LrtbHeader;
+use lrmesh::format::layout::{LrtbHeader, LR_OPEN_FANS};
 use lrmesh::format::Tag;
 use lrmesh::generate::{self, Rng};
 use lrmesh::lr::{LrLayout, IRREGULAR, NULL, VALUE, WART};
 use lrmesh::read::{open, Limits};
 use lrmesh::write::Connectivity;
-use lrmesh::{Corner, CornerOps, Mesh, Vertex};
+use lrmesh::{Corner, CornerOps, Mesh, Rule, Vertex};
 
 // ---------------------------------------------------------------------------------------
 // §3.5 LRTB.
@@ -26,7 +26,7 @@ fn v15_lrtb_counts() {
     let field = |f: usize, x: u32| forge(&bytes, Tag::LRTB, |p| put(p, f, x));
     breaks(&field(0, 5), 15, "LRTB", at, "section MESH says 4");
     breaks(&field(0, 3), 15, "LRTB", at, "section MESH says 4");
-    breaks(&field(20, 2), 15, "LRTB", at + 20, "unknown flag bits");
+    breaks(&field(20, 4), 15, "LRTB", at + 20, "unknown flag bits");
     // m_r > m; R = 0 iff m_r = 0; 4R ≤ m_r.
     for m_r in [5, 0, 3] {
         breaks(&field(4, m_r), 15, "LRTB", at + 4, "ring vertices");
@@ -44,15 +44,13 @@ fn v15_lrtb_counts() {
     breaks(&field(12, 1), 15, "LRTB", at, "counts call for");
 }
 
-/// [V15] The reserved words at 24 and 28 and the record count at 16 are located at their own
-/// fields.
+/// [V15] The reserved word at 28 and the record count at 16 are located at their own fields
+/// (the fan count at 24: [V61]).
 #[test]
-
 fn v15_lrtb_fields_located_exactly() {
     let bytes = vector("closed_tetrahedron.lrm");
     let at = section_at(&bytes, Tag::LRTB);
     let field = |f: usize, x: u32| forge(&bytes, Tag::LRTB, |p| put(p, f, x));
-    breaks(&field(24, 1), 15, "LRTB", at + 24, "");
     breaks(&field(28, 1), 15, "LRTB", at + 28, "");
     breaks(&field(16, NULL), 15, "LRTB", at + 16, "");
 }
@@ -390,11 +388,14 @@ fn v53_boundary_flag_holds() {
     ] {
         let bytes = encoded(&soup(), connectivity);
         assert_eq!(
-            get(&payload(&bytes, tag), at),
+            get(&payload(&bytes, tag), at) & 1,
             0,
             "the writer leaves the flag clear"
         );
-        let bad = forge(&bytes, tag, |p| put(p, at, 1));
+        let bad = forge(&bytes, tag, |p| {
+            let flags = get(p, at) | 1;
+            put(p, at, flags)
+        });
         breaks(
             &bad,
             53,
@@ -408,6 +409,100 @@ fn v53_boundary_flag_holds() {
         let bytes = vector(name);
         assert_eq!(get(&payload(&bytes, Tag::LRTB), 20), 1, "{name}");
     }
+}
+
+/// [V61] The list of open fans (`LRTB` flag `OPEN_FANS`): a fan count only with the flag and
+/// at most `m_r`, no bit past the last ring vertex, the ranks the bits imply, as many bits
+/// as fans, each fan's corner a corner of the mesh. A listed corner of another vertex, or an
+/// open fan left out, is caught by the verifying reader ([V23], [V38]), and a well-formed
+/// open still answers in range.
+#[test]
+fn v61_open_fans_listed() {
+    // Without the flag, the count is 0.
+    let closed = vector("closed_tetrahedron.lrm");
+    let bad = forge(&closed, Tag::LRTB, |p| put(p, 24, 1));
+    breaks(
+        &bad,
+        61,
+        "LRTB",
+        section_at(&closed, Tag::LRTB) + 24,
+        "without the flag",
+    );
+
+    let bytes = vector("boundary_hedra_open.lrm");
+    let p = payload(&bytes, Tag::LRTB);
+    let h = LrtbHeader::read(&p);
+    assert_eq!(
+        h.flags & LR_OPEN_FANS,
+        LR_OPEN_FANS,
+        "the writer lists the open fans"
+    );
+    assert_eq!(
+        (h.m_r, h.open_fans),
+        (6, 1),
+        "one fan of six ring vertices listed"
+    );
+    let at = section_at(&bytes, Tag::LRTB);
+    let (bits, rank, fans) = (FAN_BITS, FAN_RANK, FANS);
+    let word = |i: usize, k: usize| get(&p, lrtb_word(&p, i, k));
+    let listed = word(bits, 0).trailing_zeros();
+    breaks(
+        &forge(&bytes, Tag::LRTB, |p| put(p, 24, 7)),
+        61,
+        "LRTB",
+        at + 24,
+        "7 open fans listed for 6 ring vertices",
+    );
+    let set_bits = |x: u32| forge(&bytes, Tag::LRTB, |p| set_lrtb(p, bits, 0, x));
+    breaks(
+        &set_bits(word(bits, 0) | 1 << 6),
+        61,
+        "LRTB",
+        lrtb_at(&bytes, "fan_bits", 0),
+        "past the last ring vertex",
+    );
+    breaks(
+        &set_bits(0),
+        61,
+        "LRTB",
+        lrtb_at(&bytes, "fan_bits", 0),
+        "0 ring vertices marked for 1 fans",
+    );
+    let bad = forge(&bytes, Tag::LRTB, |p| set_lrtb(p, rank, 0, 1));
+    breaks(
+        &bad,
+        61,
+        "LRTB",
+        lrtb_at(&bytes, "fan_rank", 0),
+        "rank 1 where the bits before count 0",
+    );
+    // Corner 3 is in no triangle (corners 8v + 3 are unused).
+    let bad = forge(&bytes, Tag::LRTB, |p| set_lrtb(p, fans, 0, 3));
+    breaks(
+        &bad,
+        61,
+        "LRTB",
+        lrtb_at(&bytes, "FANS", 0),
+        "not a corner of the mesh",
+    );
+
+    // Semantic: the fan listed for another vertex, whose v.c then is a corner of `listed`.
+    let other = (listed + 1) % 6;
+    let bad = set_bits(1 << other);
+    let rule = format_error(&bad).rule;
+    assert!([Rule(23), Rule(38)].contains(&rule), "{rule}");
+    // The fan's corner moved to another corner of the same vertex, not its start.
+    let view = open(&bytes, &Limits::default()).unwrap();
+    let lr = view.lr().unwrap();
+    let start = lr.vertex_corner(Vertex(listed)).unwrap();
+    let (corners, first) = fan_of(lr, listed);
+    assert_eq!(first, Some(start));
+    let later = corners
+        .into_iter()
+        .find(|&c| c != start)
+        .expect("a second corner");
+    let bad = forge(&bytes, Tag::LRTB, |p| set_lrtb(p, fans, 0, later.0));
+    assert_eq!(format_error(&bad).rule, Rule(38));
 }
 
 /// [V38] `v.c = NONE` iff no triangle has `v`; an open fan's `v.c` starts it. For `LRTB`

@@ -104,7 +104,7 @@ fn options(
 }
 
 /// For LR and strips, one line per corner of every (canonical) triangle:
-/// `corner vertex opposite` (`-` for none). For Edgebreaker, one line per decoded triangle: its
+/// `corner vertex opposite` (`-` for none), then one per vertex: `vertex v.c`. For Edgebreaker, one line per decoded triangle: its
 /// three vertices, in decode order.
 fn listing(name: &str, bytes: &[u8]) -> String {
     let view = open(bytes, &Limits::default()).unwrap();
@@ -116,9 +116,10 @@ fn listing(name: &str, bytes: &[u8]) -> String {
             name,
             lr,
             format!(
-                "{n} triangles, {} ring vertices, boundaries on the ring: {}",
+                "{n} triangles, {} ring vertices, boundaries on the ring: {}, open fans listed: {}",
                 lr.ring_vertices(),
-                lr.boundaries_on_ring()
+                lr.boundaries_on_ring(),
+                lr.listed_fans().map_or("no list".to_string(), |f| f.len().to_string())
             ),
         ),
         View::LrCompact(lr) => corner_listing(
@@ -290,6 +291,17 @@ fn corner_listing<M: CornerOps>(out: &mut String, name: &str, m: &M, counts: Str
     for c in m.corners() {
         let o = m.opposite(c).map_or("-".to_string(), |o| o.0.to_string());
         writeln!(out, "{} {} {o}", c.0, m.vertex(c).0).unwrap();
+    }
+    writeln!(
+        out,
+        "# vertex v.c (the first corner of its fan when the fan is open)"
+    )
+    .unwrap();
+    for v in m.vertices() {
+        let c = m
+            .vertex_corner(v)
+            .map_or("-".to_string(), |c| c.0.to_string());
+        writeln!(out, "{} {c}", v.0).unwrap();
     }
 }
 

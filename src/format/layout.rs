@@ -199,10 +199,12 @@ pub struct LrtbHeader {
     pub t0: u32,
     /// `ni`: `VO*` records.
     pub records: u32,
-    /// Flags: [`LR_BOUNDARIES_ON_RING`] or 0.
+    /// Flags: [`LR_BOUNDARIES_ON_RING`], [`LR_OPEN_FANS`].
     pub flags: u32,
+    /// `F`: fans in `FANS` with [`LR_OPEN_FANS`] (version 1.17), 0 without (reserved before).
+    pub open_fans: u32,
     /// Reserved, 0.
-    pub reserved: [u32; 2],
+    pub reserved: u32,
 }
 
 /// `LRTB` and `LRBE` flag (FORMAT.md §3.5, rule V53): every corner without an opposite is
@@ -211,11 +213,15 @@ pub struct LrtbHeader {
 /// reader that only checks that a file is well formed takes it from here.
 pub const LR_BOUNDARIES_ON_RING: u32 = 1;
 
+/// `LRTB` flag (FORMAT.md §3.5.1, version 1.17, rule V61): the open fans that `v.c` cannot
+/// tell from the ring are listed in `FANS`, so that `v.c` never walks a fan.
+pub const LR_OPEN_FANS: u32 = 2;
+
 impl LrtbHeader {
     /// Bytes of the header.
     pub const LEN: usize = 32;
     /// The arrays, in file order.
-    pub const ARRAYS: [&'static str; 8] = [
+    pub const ARRAYS: [&'static str; 11] = [
         "ring_starts",
         "ring_last",
         "ring_rank",
@@ -224,11 +230,14 @@ impl LrtbHeader {
         "VO_O",
         "VO*",
         "C",
+        "fan_bits",
+        "fan_rank",
+        "FANS",
     ];
 
     /// The header at the start of `b` (at least [`LrtbHeader::LEN`] bytes).
     pub fn read(b: &[u8]) -> LrtbHeader {
-        let [m, m_r, rings, t0, records, flags, r0, r1] = read_fields(b);
+        let [m, m_r, rings, t0, records, flags, open_fans, reserved] = read_fields(b);
         LrtbHeader {
             m,
             m_r,
@@ -236,14 +245,14 @@ impl LrtbHeader {
             t0,
             records,
             flags,
-            reserved: [r0, r1],
+            open_fans,
+            reserved,
         }
     }
 
     /// The header's bytes.
     pub fn to_bytes(&self) -> Vec<u8> {
         let mut out = Vec::with_capacity(Self::LEN);
-        let [r0, r1] = self.reserved;
         write_fields(
             &mut out,
             &[
@@ -253,8 +262,8 @@ impl LrtbHeader {
                 self.t0,
                 self.records,
                 self.flags,
-                r0,
-                r1,
+                self.open_fans,
+                self.reserved,
             ],
         );
         out
@@ -273,6 +282,9 @@ impl LrtbHeader {
             3 * self.records as u64,
             (self.m as u64).checked_sub(self.m_r as u64)?,
         ];
+        let listed = self.flags & LR_OPEN_FANS != 0;
+        let fans = [bits, bits, self.open_fans as u64].map(|n| if listed { n } else { 0 });
+        let counts = counts.into_iter().chain(fans);
         let arrays: Vec<_> = Self::ARRAYS
             .iter()
             .zip(counts)

@@ -24,9 +24,10 @@ pub const MAGIC: [u8; 8] = [0x89, b'L', b'R', b'M', b'\r', b'\n', 0x1a, b'\n'];
 /// Major version written and read. A reader rejects any other major version.
 pub const MAJOR: u16 = 1;
 /// Newest minor version written. Readers accept any minor version of their major version.
-pub const MINOR: u16 = 16;
+pub const MINOR: u16 = 17;
 
-/// The minor version a file of these sections (tags and payloads) is written with: 16 with
+/// The minor version a file of these sections (tags and payloads) is written with: 17 with
+/// `LRTB` flag `OPEN_FANS`; 16 with
 /// `ZIPR` flag `JOINED_LISTS`; 15 with
 /// `ZIPR` flag `ROW_RECORDS` or `IMPLIED_WARTS`; 14 with
 /// `ZIPR` flag `LEFT_FOURS` or `RIGHT_FOURS`; 13 with `ZIPR` in the compact form; 12 with
@@ -52,6 +53,7 @@ pub fn minor_for<'a>(sections: impl IntoIterator<Item = (Tag, &'a [u8])>) -> u16
             Tag::PART if bytes.len() >= 10 && bytes[9] == parts::RUNS => 2,
             Tag::COPC => 3,
             // The LR flags word (FORMAT.md §3.5 and §3.5d).
+            Tag::LRTB if bytes.len() >= 24 && le_u32(bytes, 20) & layout::LR_OPEN_FANS != 0 => 17,
             Tag::LRTB if bytes.len() >= 24 && le_u32(bytes, 20) != 0 => 4,
             Tag::LRBE if bytes.len() >= 32 && le_u32(bytes, 28) & layout::LRBE_TIP_BASES != 0 => 11,
             Tag::LRBE if bytes.len() >= 32 && le_u32(bytes, 28) != 0 => 4,

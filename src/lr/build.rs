@@ -6,7 +6,7 @@ use super::ring::{Prepared, Rings};
 use super::tables::{
     boundaries_on_ring_given, ring_bits, LrLayout, LrTables, LEFT, NULL, RIGHT, VALUE, WART,
 };
-use super::{InputMaps, Lr, LrCounts, LrOptions};
+use super::{InputMaps, Lr, LrCounts, LrOptions, OpenFans};
 use crate::corner_table::{CornerTable, NONE};
 use crate::error::{Error, Result};
 use crate::ids::{Triangle, Vertex};
@@ -117,6 +117,7 @@ impl Lr {
             m_r,
             m: real_vertices,
             boundaries_on_ring: false,
+            open_fans: None,
         };
 
         // LR vertex ids: ring vertices by ring position, then isolated ones in table order.
@@ -319,6 +320,8 @@ impl Lr {
         let without_opposite = ct.o_table().iter().filter(|&&o| o == NONE).count();
         lr_struct.tables.boundaries_on_ring =
             boundaries_on_ring_given(&lr_struct.tables, without_opposite);
+        // While the corner table still has its opposites (`build_owned` frees them next).
+        lr_struct.tables.open_fans = open_fans(&lr_struct.tables, ct, &lr_vertex, ct_to_lr);
         lr_struct.maps.counts = LrCounts {
             triangles: nt_real as u32,
             vertices: real_vertices,
@@ -407,6 +410,39 @@ impl Partial {
         }
         lr_struct
     }
+}
+
+/// The list of open fans of `tables` (FORMAT.md §3.5.1), read from the corner table `ct`
+/// whose vertex `x` is LR vertex `lr_vertex[x]` and whose corner `c` is LR corner
+/// `ct_to_lr(c)`: every ring vertex whose fan is open, but those whose fan `v.c` starts
+/// after a boundary ring edge, with the table's `v.c` (its fan's start). `None` when `v.c`
+/// needs no list: every boundary on the ring and no such vertex.
+fn open_fans(
+    tables: &LrTables<Vec<u32>>,
+    ct: &CornerTable,
+    lr_vertex: &[u32],
+    ct_to_lr: impl Fn(u32) -> u32,
+) -> Option<OpenFans<Vec<u32>>> {
+    let m_r = tables.m_r;
+    let (c_table, o_table) = (ct.c_table(), ct.o_table());
+    let mut pairs = Vec::new();
+    for (x, &v) in lr_vertex.iter().enumerate() {
+        let c = c_table[x];
+        if v >= m_r || c == NONE {
+            continue;
+        }
+        let prev = prev3(c);
+        let u = tables.ring_prev(v);
+        let after_boundary_edge = tables.right_is_null(u) && !tables.wart(u, LEFT);
+        if o_table[prev as usize] == NONE && !after_boundary_edge {
+            pairs.push((v, ct_to_lr(c)));
+        }
+    }
+    if pairs.is_empty() && tables.boundaries_on_ring {
+        return None;
+    }
+    pairs.sort_unstable();
+    Some(OpenFans::from_pairs(&pairs, m_r))
 }
 
 /// Slots per thread below which a search stays on the calling thread.

@@ -45,12 +45,14 @@ mod build;
 mod closed;
 pub mod compact;
 mod leaf_moves;
+pub mod open_fans;
 pub(crate) mod read_back;
 mod ring;
 mod tables;
 pub mod zipper;
 
 pub use compact::{CompactLr, CompactOptions, CompactStats, CompactTables};
+pub use open_fans::OpenFans;
 pub(crate) use tables::{bits_and_ranks, boundaries_on_ring_given, one_ring_next_next, ring_bits};
 pub use tables::{LrLayout, LrTables, IRREGULAR, NULL, VALUE, WART};
 pub use zipper::{Zipper, ZipperStats, ZipperTables};

@@ -4,6 +4,7 @@
 //! reader checks the semantic rules on them (FORMAT.md §5.1 asks the same answers of both).
 //! The Zipper has a faster pass of its own ([`ZipperTables::to_lr_tables`](super::ZipperTables)).
 
+use super::open_fans::OpenFans;
 use super::tables::{LrLayout, LrTables, IRREGULAR, LEFT, RIGHT, WART};
 
 /// The opposite of transversal corner `k` of slot `(v, side)`: stored or inferred.
@@ -58,6 +59,9 @@ pub(crate) fn with_slots<T: LrLayout>(
         m_r: t.ring_vertices(),
         m: t.vertex_count(),
         boundaries_on_ring: t.boundaries_on_ring(),
+        open_fans: t
+            .listed_fans()
+            .map(|pairs| OpenFans::from_pairs(&pairs, t.ring_vertices())),
     }
 }
 

@@ -6,6 +6,8 @@ use crate::ids::{Corner, Triangle, Vertex};
 use crate::ops::CornerOps;
 use crate::words::Words;
 
+use super::open_fans::OpenFans;
+
 /// Entry flag: the slot's triangle has a VO* record; the entry's value is the record index.
 pub const IRREGULAR: u32 = 1 << 31;
 /// Entry flag: the slot holds a T0 triangle in a wart's redundant slot; its far vertex is
@@ -48,6 +50,8 @@ pub struct LrTables<W> {
     /// Whether every boundary edge is a ring edge whose right slot has tip `NULL` (derived,
     /// not stored: see [`LrLayout::boundaries_on_ring`]).
     pub(crate) boundaries_on_ring: bool,
+    /// The ring vertices whose open fan `v.c` looks up (`OPEN_FANS`), if listed.
+    pub(crate) open_fans: Option<OpenFans<W>>,
 }
 
 /// Whether every corner of `tables` without an opposite (`without_opposite` of them, counted
@@ -191,6 +195,17 @@ impl<W: Words> LrLayout for LrTables<W> {
     fn boundaries_on_ring(&self) -> bool {
         self.boundaries_on_ring
     }
+    #[inline(always)]
+    fn open_fans_listed(&self) -> bool {
+        self.open_fans.is_some()
+    }
+    #[inline(always)]
+    fn listed_fan_start(&self, v: u32) -> Option<u32> {
+        self.open_fans.as_ref().and_then(|f| f.start(v))
+    }
+    fn listed_fans(&self) -> Option<Vec<(u32, u32)>> {
+        self.open_fans.as_ref().map(|f| f.iter().collect())
+    }
 
     #[inline(always)]
     fn isolated_corner(&self, i: u32) -> u32 {
@@ -257,6 +272,22 @@ pub trait LrLayout {
     /// `v.c` finds a fan's start in constant time (OPERATORS.md §4). Derived from the
     /// tables when they are built or validated, never stored.
     fn boundaries_on_ring(&self) -> bool;
+    /// Whether the tables list the open fans (`OPEN_FANS`, FORMAT.md §3.5.1): every ring
+    /// vertex whose fan is open, but those after a boundary ring edge, with its fan's first
+    /// corner, so that `v.c` never walks a fan.
+    #[inline(always)]
+    fn open_fans_listed(&self) -> bool {
+        false
+    }
+    /// The first corner listed for ring vertex `v` (with [`open_fans_listed`](Self::open_fans_listed)).
+    #[inline(always)]
+    fn listed_fan_start(&self, _v: u32) -> Option<u32> {
+        None
+    }
+    /// The listed `(vertex, first corner)` pairs in order, `None` without the list.
+    fn listed_fans(&self) -> Option<Vec<(u32, u32)>> {
+        None
+    }
 
     /// Whether `v` ends its ring (by default from the ring-end bits).
     #[inline(always)]
@@ -585,15 +616,19 @@ impl<T: LrLayout> CornerOps for T {
         if v.0 >= m_r {
             return Corner::from_stored(self.isolated_corner(v.0 - m_r));
         }
-        // The fan's first corner (OPERATORS.md §4): after a boundary ring edge (u, v) it is
-        // v's corner in u's left triangle; with every boundary on the ring, any other ring
-        // vertex has a closed fan; otherwise the fan is walked back to its start.
+        // The fan's first corner (OPERATORS.md §4.2): after a boundary ring edge (u, v) it is
+        // v's corner in u's left triangle; the list of open fans has every other open fan's;
+        // without the list, with every boundary on the ring, any other ring vertex has a
+        // closed fan; otherwise the fan is walked back to its start.
         let u = self.ring_prev(v.0);
         let boundary_before = self.right_is_null(u);
         if boundary_before && !self.wart(u, LEFT) {
             return Some(Corner(self.canonical(8 * u + 2)));
         }
         let c = Corner(self.canonical(8 * v.0));
+        if self.open_fans_listed() {
+            return Some(self.listed_fan_start(v.0).map_or(c, Corner));
+        }
         if self.boundaries_on_ring() && !boundary_before {
             return Some(c);
         }

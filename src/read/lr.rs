@@ -4,16 +4,17 @@
 
 use super::fields::Fields;
 use super::lr_rules::{
-    check_rings, check_vertex_corners, ring_slot_flags, verified_boundaries, SlotMap, CANONICAL,
+    check_open_fans, check_rings, check_vertex_corners, ring_slot_flags, verified_boundaries,
+    SlotMap, CANONICAL,
 };
 use super::Sections;
 use crate::corner_table::NONE;
 use crate::error::{Result, Rule};
-use crate::format::layout::{LrtbHeader, LR_BOUNDARIES_ON_RING};
+use crate::format::layout::{LrtbHeader, LR_BOUNDARIES_ON_RING, LR_OPEN_FANS};
 use crate::format::Tag;
 use crate::ids::Corner;
 use crate::lr::one_ring_next_next;
-use crate::lr::{LrTables, IRREGULAR, NULL, VALUE, WART};
+use crate::lr::{LrTables, OpenFans, IRREGULAR, NULL, VALUE, WART};
 use crate::words::{LeWords, Words};
 
 /// The `LRTB` section as tables and the number of canonical triangles they hold, after
@@ -30,12 +31,24 @@ pub(super) fn lr_tables<'a>(
     let h = LrtbHeader::read(f.bytes());
     let (m_r, rings, records) = (h.m_r, h.rings, h.records);
     f.expect_vertices(0, h.m, m, Rule(15))?;
-    if h.flags & !LR_BOUNDARIES_ON_RING != 0 {
+    if h.flags & !(LR_BOUNDARIES_ON_RING | LR_OPEN_FANS) != 0 {
         return Err(f.err(20, Rule(15), "unknown flag bits are set"));
     }
-    if let Some(i) = h.reserved.iter().position(|&r| r != 0) {
-        return Err(f.err(24 + 4 * i, Rule(15), "reserved field is not zero"));
+    if h.reserved != 0 {
+        return Err(f.err(28, Rule(15), "reserved field is not zero"));
     }
+    let listed = h.flags & LR_OPEN_FANS != 0;
+    if !listed && h.open_fans != 0 {
+        return Err(f.err(24, Rule(61), "open fans counted without the flag OPEN_FANS"));
+    }
+    if h.open_fans > m_r {
+        return Err(f.err(
+            24,
+            Rule(61),
+            format!("{} open fans listed for {m_r} ring vertices", h.open_fans),
+        ));
+    }
+    // (The arrays' lengths follow from the count, checked with the rest of [V15].)
     if m >= NULL {
         return Err(f.err(
             0,
@@ -59,8 +72,8 @@ pub(super) fn lr_tables<'a>(
     let layout = h.layout();
     f.expect_len(layout.as_ref().map(|l| l.len), Rule(15))?;
     let layout = layout.expect("checked by expect_len");
-    let arrays: [_; 8] = std::array::from_fn(|i| layout.arrays[i]);
-    let [ring_starts, ring_last, ring_rank, lr, vo_v, vo_o, vo_star, c] =
+    let arrays: [_; 11] = std::array::from_fn(|i| layout.arrays[i]);
+    let [ring_starts, ring_last, ring_rank, lr, vo_v, vo_o, vo_star, c, fan_bits, fan_rank, fans] =
         arrays.map(|a| LeWords(&f.bytes()[a.start..a.end()]));
     let word_err = |array: usize, i: usize, rule: Rule, message: String| {
         f.err(arrays[array].at(i), rule, message)
@@ -94,6 +107,7 @@ pub(super) fn lr_tables<'a>(
         m_r,
         m,
         boundaries_on_ring: false,
+        open_fans: None,
     };
 
     // [V17] entries: values in range, NULL only as a right tip, the records they use with
@@ -158,6 +172,19 @@ pub(super) fn lr_tables<'a>(
                 ));
             }
         }
+    }
+
+    // [V61] the list of open fans: ring vertices increasing, corners of the mesh.
+    if listed {
+        let list = OpenFans {
+            bits: fan_bits,
+            rank: fan_rank,
+            corners: fans,
+        };
+        check_open_fans(&list, &slots, m_r, |array, i, message| {
+            word_err(8 + array, i, Rule(61), message)
+        })?;
+        tables.open_fans = Some(list);
     }
 
     // [V19], then the verifying reader's rules: [V21], [V22], [V53]; [V23] and [V38] with

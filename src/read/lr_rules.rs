@@ -6,7 +6,7 @@
 use super::fields::Fields;
 use crate::error::{Error, Result, Rule};
 use crate::ids::{Corner, Vertex};
-use crate::lr::{LrLayout, LrTables, NULL};
+use crate::lr::{LrLayout, LrTables, OpenFans, NULL};
 use crate::ops::CornerOps;
 use crate::words::Words;
 
@@ -293,6 +293,61 @@ impl SlotMap {
         }
         Ok(())
     }
+}
+
+/// [V61] the list of open fans: the bits of the ring vertices listed, padding bits 0, as many
+/// set as fans listed, the ranks those the bits imply, and every listed corner a corner of a
+/// canonical triangle. `fault(array, word, message)` locates a fault in array 0 (bits), 1
+/// (ranks) or 2 (corners).
+pub(super) fn check_open_fans<W: Words>(
+    list: &OpenFans<W>,
+    slots: &SlotMap,
+    m_r: u32,
+    fault: impl Fn(usize, usize, String) -> Error,
+) -> Result<()> {
+    let words = list.bits.count();
+    if m_r % 32 != 0 && words > 0 && list.bits.at(words - 1) >> (m_r % 32) != 0 {
+        return Err(fault(
+            0,
+            words - 1,
+            "bits past the last ring vertex are set".into(),
+        ));
+    }
+    let mut count = 0u64;
+    for k in 0..words {
+        if list.rank.at(k) as u64 != count {
+            return Err(fault(
+                1,
+                k,
+                format!(
+                    "rank {} where the bits before count {count}",
+                    list.rank.at(k)
+                ),
+            ));
+        }
+        count += list.bits.at(k).count_ones() as u64;
+    }
+    if count != list.count() as u64 {
+        return Err(fault(
+            0,
+            0,
+            format!(
+                "{count} ring vertices marked for {} fans listed",
+                list.count()
+            ),
+        ));
+    }
+    for i in 0..list.count() {
+        let c = list.corners.at(i);
+        if !slots.is_corner(c) {
+            return Err(fault(
+                2,
+                i,
+                format!("open fan {i} starts at {c}, not a corner of the mesh"),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// [V21] and [V22] for any LR layout (a verifying reader's rules). `corner_at` gives the

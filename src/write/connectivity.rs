@@ -6,9 +6,10 @@ use crate::edgebreaker;
 use crate::error::Result;
 use crate::format::layout::{
     write_fields, CompactZipr, Layout, LrbeHeader, LrtbHeader, StrpHeader, ZiprHeader,
-    LRBE_TIP_BASES, LR_BOUNDARIES_ON_RING, ZIPPER_IMPLIED_WARTS, ZIPPER_INNER_RING_STARTS,
-    ZIPPER_JOINED_LISTS, ZIPPER_LEFT_FOURS, ZIPPER_PACKED_LISTS, ZIPPER_RIGHT_FOURS,
-    ZIPPER_RING_BLOCKS, ZIPPER_ROW_RECORDS, ZIPPER_SHORT_HEADS, ZIPPER_WART_DELTAS,
+    LRBE_TIP_BASES, LR_BOUNDARIES_ON_RING, LR_OPEN_FANS, ZIPPER_IMPLIED_WARTS,
+    ZIPPER_INNER_RING_STARTS, ZIPPER_JOINED_LISTS, ZIPPER_LEFT_FOURS, ZIPPER_PACKED_LISTS,
+    ZIPPER_RIGHT_FOURS, ZIPPER_RING_BLOCKS, ZIPPER_ROW_RECORDS, ZIPPER_SHORT_HEADS,
+    ZIPPER_WART_DELTAS,
 };
 use crate::format::{Kind, Tag};
 use crate::ids::{Triangle, Vertex};
@@ -120,8 +121,14 @@ pub(super) fn lr_section(lr: &Lr, shape: bool) -> Encoded {
         rings: t.ring_count() as u32,
         t0: t.t0_count(),
         records: t.record_count(),
-        flags: boundary_flag(t),
-        reserved: [0; 2],
+        flags: boundary_flag(t)
+            | if t.open_fans.is_some() {
+                LR_OPEN_FANS
+            } else {
+                0
+            },
+        open_fans: t.open_fans.as_ref().map_or(0, |f| f.count() as u32),
+        reserved: 0,
     };
     let layout = header.layout().expect("a built LR fits its layout");
     let mut p = header.to_bytes();
@@ -137,6 +144,9 @@ pub(super) fn lr_section(lr: &Lr, shape: bool) -> Encoded {
             &t.vo_o,
             &t.vo_star,
             &t.c,
+            t.open_fans.as_ref().map_or(&[], |f| &f.bits),
+            t.open_fans.as_ref().map_or(&[], |f| &f.rank),
+            t.open_fans.as_ref().map_or(&[], |f| &f.corners),
         ],
         &[],
     );

@@ -7,25 +7,9 @@ use crate::generate;
 use crate::ids::{Corner, Triangle, Vertex};
 use crate::lr::LrOptions;
 use crate::ops::CornerOps;
-use crate::words::Words;
+use crate::words::Counting;
 use crate::CornerTable;
 use std::cell::Cell;
-
-/// Words that count their reads.
-struct Counting<'a> {
-    words: &'a [u32],
-    reads: &'a Cell<usize>,
-}
-
-impl Words for Counting<'_> {
-    fn at(&self, i: usize) -> u32 {
-        self.reads.set(self.reads.get() + 1);
-        self.words[i]
-    }
-    fn count(&self) -> usize {
-        self.words.len()
-    }
-}
 
 /// The tables of `z` over counting words.
 fn counting<'a>(
