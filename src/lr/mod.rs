@@ -415,6 +415,9 @@ pub struct LrStats {
     pub ti_pct: f64,
     /// References per triangle, `(2 m_r + 6 n_0 + 3 n^i + m_i) / n`.
     pub rpt: f64,
+    /// Ring vertices whose open fan `LRTB` lists for `v.c` (flag `OPEN_FANS`, FORMAT.md
+    /// §3.5.1): one per boundary edge off the ring; 0 without the list.
+    pub open_fans: u32,
 }
 
 impl LrStats {
@@ -432,6 +435,11 @@ impl LrStats {
             t0w_pct: pct(c.t0_wart),
             ti_pct: pct(c.irregular),
             rpt: c.references_per_triangle(),
+            open_fans: lr
+                .tables()
+                .open_fans
+                .as_ref()
+                .map_or(0, |f| f.count() as u32),
         }
     }
 }
@@ -447,6 +455,7 @@ impl std::fmt::Display for LrStats {
         writeln!(f, "  T0 (after wart skipping) {:.2}%", self.t0_pct)?;
         writeln!(f, "  T0^w                     {:.2}%", self.t0w_pct)?;
         writeln!(f, "  T^i                      {:.2}%", self.ti_pct)?;
-        writeln!(f, "  references per triangle  {:.3}", self.rpt)
+        writeln!(f, "  references per triangle  {:.3}", self.rpt)?;
+        writeln!(f, "  open fans listed         {}", self.open_fans)
     }
 }
