@@ -37,18 +37,6 @@ pub(super) fn lr_tables<'a>(
     if h.reserved != 0 {
         return Err(f.err(28, Rule(15), "reserved field is not zero"));
     }
-    let listed = h.flags & LR_OPEN_FANS != 0;
-    if !listed && h.open_fans != 0 {
-        return Err(f.err(24, Rule(61), "open fans counted without the flag OPEN_FANS"));
-    }
-    if h.open_fans > m_r {
-        return Err(f.err(
-            24,
-            Rule(61),
-            format!("{} open fans listed for {m_r} ring vertices", h.open_fans),
-        ));
-    }
-    // (The arrays' lengths follow from the count, checked with the rest of [V15].)
     if m >= NULL {
         return Err(f.err(
             0,
@@ -67,6 +55,18 @@ pub(super) fn lr_tables<'a>(
             16,
             Rule(15),
             format!("{records} records exceed the LR limit"),
+        ));
+    }
+    // [V61] the fan count, before the length it decides.
+    let listed = h.flags & LR_OPEN_FANS != 0;
+    if !listed && h.open_fans != 0 {
+        return Err(f.err(24, Rule(61), "open fans counted without the flag OPEN_FANS"));
+    }
+    if h.open_fans > m_r {
+        return Err(f.err(
+            24,
+            Rule(61),
+            format!("{} open fans listed for {m_r} ring vertices", h.open_fans),
         ));
     }
     let layout = h.layout();
@@ -174,7 +174,7 @@ pub(super) fn lr_tables<'a>(
         }
     }
 
-    // [V61] the list of open fans: ring vertices increasing, corners of the mesh.
+    // [V61] the list of open fans: the bits, their ranks and count, corners of the mesh.
     if listed {
         let list = OpenFans {
             bits: fan_bits,
