@@ -1,6 +1,7 @@
 //! Constant time, counted: every operator reads a bounded number of words of the tables,
 //! whatever the mesh (OPERATORS.md §8.5); `v.c` too when the boundaries run along the ring
-//! (otherwise it walks the vertex's fan, OPERATORS.md §4.2, as on every LR layout).
+//! (otherwise it walks the vertex's fan, OPERATORS.md §4.2, as the bit-efficient LR does; the
+//! standard LR lists its open fans instead, `crate::lr::open_fans`).
 
 use super::{Zipper, ZipperTables};
 use crate::generate;
