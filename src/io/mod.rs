@@ -447,6 +447,16 @@ pub(crate) fn check_writable(mesh: &Mesh) -> std::io::Result<()> {
         .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidInput, e.to_string()))
 }
 
+/// The mesh of `corpus/meshes/NAME`, read with the default options (the unit tests' real
+/// meshes).
+#[cfg(test)]
+pub(crate) fn corpus_mesh(name: &str) -> Mesh {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("corpus/meshes")
+        .join(name);
+    read_mesh(&path, &Default::default()).unwrap().mesh
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

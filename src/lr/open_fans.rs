@@ -8,7 +8,7 @@
 //! of the vertex and, when set, a rank word and the listed corner: three reads whatever the
 //! mesh, as the ring-end bits and ranks are read.
 
-use super::tables::bits_and_ranks;
+use super::tables::{bits_and_ranks, rank_of_bit};
 use crate::words::Words;
 
 /// Per ring vertex a bit, set when its fan is listed; per 32-bit word of bits the number of
@@ -24,13 +24,15 @@ impl<W: Words> OpenFans<W> {
     /// The first corner listed for ring vertex `v`, if `v` is listed.
     #[inline(always)]
     pub fn start(&self, v: u32) -> Option<u32> {
-        let (k, bit) = (v as usize / 32, v % 32);
+        let k = v as usize / 32;
         let word = self.bits.at(k);
-        if word >> bit & 1 == 0 {
+        if word >> (v % 32) & 1 == 0 {
             return None;
         }
-        let before = (word & ((1u32 << bit) - 1)).count_ones();
-        Some(self.corners.at((self.rank.at(k) + before) as usize))
+        Some(
+            self.corners
+                .at(rank_of_bit(word, self.rank.at(k), v) as usize),
+        )
     }
 
     /// Listed fans.
@@ -112,14 +114,7 @@ mod tests {
         generate::punch_holes(&mut holes, 60, &mut rng);
         let mut meshes = vec![holes, generate::soup(30, 80, &mut rng)];
         for name in ["elephant-with-holes.off", "b9_mesh.off", "hedra_open.off"] {
-            let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-                .join("corpus/meshes")
-                .join(name);
-            meshes.push(
-                crate::io::read_mesh(&path, &Default::default())
-                    .unwrap()
-                    .mesh,
-            );
+            meshes.push(crate::io::corpus_mesh(name));
         }
         for (i, mesh) in meshes.iter().enumerate() {
             let ct = CornerTable::from_mesh(mesh).unwrap();

@@ -74,8 +74,15 @@ pub(crate) fn is_last_by_bits<T: LrLayout + ?Sized>(t: &T, v: u32) -> bool {
 /// [`LrLayout::ring_of`] from the ring-end bit vector and its ranks.
 #[inline(always)]
 pub(crate) fn ring_of_by_bits<T: LrLayout + ?Sized>(t: &T, v: u32) -> usize {
-    let word = t.ring_last_word(v as usize / 32) & ((1u32 << (v % 32)) - 1);
-    (t.ring_rank_word(v as usize / 32) + word.count_ones()) as usize
+    let k = v as usize / 32;
+    rank_of_bit(t.ring_last_word(k), t.ring_rank_word(k), v) as usize
+}
+
+/// The number of set bits before bit `i` of a bit vector whose word `⌊i/32⌋` is `word` and
+/// has `rank` set bits before it (the ring-end bits, the open fans' bits).
+#[inline(always)]
+pub(crate) fn rank_of_bit(word: u32, rank: u32, i: u32) -> u32 {
+    rank + (word & ((1u32 << (i % 32)) - 1)).count_ones()
 }
 
 /// `v.n.n` for ring vertex `v` when the ring is the only one, of `m_r` vertices (at least 4,

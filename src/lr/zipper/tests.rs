@@ -166,14 +166,7 @@ fn read_back_as_standard_tables_the_answers_agree() {
         generate::soup(30, 80, &mut rng),
     ];
     for name in ["b9_mesh.off", "blobby_3cc.off", "cheese.off"] {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("corpus/meshes")
-            .join(name);
-        meshes.push(
-            crate::io::read_mesh(&path, &Default::default())
-                .unwrap()
-                .mesh,
-        );
+        meshes.push(crate::io::corpus_mesh(name));
     }
     for mesh in &meshes {
         let ct = CornerTable::from_mesh(mesh).unwrap();
