@@ -176,3 +176,18 @@ impl Words for Counting<'_> {
         self.words.len()
     }
 }
+
+/// The set bits of a mask, lowest first.
+pub(crate) struct BitsSet(pub(crate) u64);
+
+impl Iterator for BitsSet {
+    type Item = u32;
+    #[inline]
+    fn next(&mut self) -> Option<u32> {
+        let i = self.0.trailing_zeros();
+        (self.0 != 0).then(|| {
+            self.0 &= self.0 - 1;
+            i
+        })
+    }
+}

@@ -9,7 +9,7 @@
 //! mesh, as the ring-end bits and ranks are read.
 
 use super::tables::{bits_and_ranks, rank_of_bit};
-use crate::words::Words;
+use crate::words::{BitsSet, Words};
 
 /// Per ring vertex a bit, set when its fan is listed; per 32-bit word of bits the number of
 /// bits set before it; the listed fans' first corners in vertex order.
@@ -42,12 +42,8 @@ impl<W: Words> OpenFans<W> {
 
     /// The `(vertex, first corner)` pairs in vertex order.
     pub fn iter(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
-        let vertices = (0..self.bits.count()).flat_map(move |k| {
-            let word = self.bits.at(k);
-            (0..32)
-                .filter(move |b| word >> b & 1 != 0)
-                .map(move |b| 32 * k as u32 + b)
-        });
+        let vertices = (0..self.bits.count())
+            .flat_map(move |k| BitsSet(u64::from(self.bits.at(k))).map(move |b| 32 * k as u32 + b));
         vertices.zip((0..self.count()).map(|i| self.corners.at(i)))
     }
 }

@@ -4,9 +4,10 @@
 //! says whether the rules hold: when they do not, the reader's pair-by-pair loop finds the
 //! first fault and names it.
 
-use super::lr_rules::{ring_slot_flags, BitsSet, CANONICAL, JUMPS};
+use super::lr_rules::{ring_slot_flags, CANONICAL, JUMPS};
 use crate::lr::compact::{plain, BLOCK_SHIFT, EXTENDED, SHORT_MAX, WART_LEFT};
 use crate::lr::{one_ring_next_next, CompactTables, NULL};
+use crate::words::BitsSet;
 use crate::words::{LeUnits, LeWords, Units, Words};
 
 type Tables<'a> = CompactTables<LeWords<'a>, LeUnits<'a>>;

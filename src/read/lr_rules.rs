@@ -8,7 +8,7 @@ use crate::error::{Error, Result, Rule};
 use crate::ids::{Corner, Vertex};
 use crate::lr::{LrLayout, LrTables, OpenFans, NULL};
 use crate::ops::CornerOps;
-use crate::words::Words;
+use crate::words::{BitsSet, Words};
 
 /// [V16] ring starts increase by at least 4 from 0 to `m_r`, and the ring-end bits and ranks
 /// (when the layout stores them) are the ones the starts imply. `err(array, word, message)`
@@ -499,21 +499,6 @@ pub(super) fn check_vertex_corners<M: CornerOps>(
         }
     }
     Ok(())
-}
-
-/// The set bits of a mask, lowest first.
-pub(super) struct BitsSet(pub(super) u64);
-
-impl Iterator for BitsSet {
-    type Item = u32;
-    #[inline]
-    fn next(&mut self) -> Option<u32> {
-        let i = self.0.trailing_zeros();
-        (self.0 != 0).then(|| {
-            self.0 &= self.0 - 1;
-            i
-        })
-    }
 }
 
 #[cfg(test)]

@@ -7,12 +7,13 @@
 //! holds: when it does not, the reader's slot-by-slot loop (`check_slots`) finds the first
 //! fault and names it.
 
-use super::lr_rules::{slot_flag_masks, BitsSet, SlotBits};
+use super::lr_rules::{slot_flag_masks, SlotBits};
 use crate::lr::zipper::{
     below, implied_wart, Slot, BLOCK_SHIFT, DELTAS, FOUR, LEFT_SLOTS, PREVIOUS, RECORD_WORDS,
     STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
 };
 use crate::lr::{LrLayout, ZipperTables, VALUE, WART};
+use crate::words::BitsSet;
 use crate::words::{LeWords, Words};
 
 type Tables<'a> = ZipperTables<LeWords<'a>>;
