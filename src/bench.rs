@@ -390,7 +390,10 @@ pub fn run(
     let timed = (&zipper_file[..], encode_time, runs);
     let (zipper_view_row, zipper_view_positions) =
         view_row("Zipper (view)", timed, &zipper_view, n);
+    // The same view read through a cursor (`ZipperTables::cursor`): its loops only.
+    let cursor_row = row("Zipper (cursor)", zipper_view_row.bytes, n, None, None);
     rows.push(zipper_view_row);
+    rows.push(cursor_row);
 
     progress("Edgebreaker");
     let eb = edgebreaker::encode(&table)?;
@@ -414,6 +417,7 @@ pub fn run(
 
     progress("Fig. 10 loops (every representation, interleaved)");
     // The loops run on each view's own tables, not through `read::Connectivity`'s dispatch.
+    let zipper_cursor = zipper_view.zipper().map(|tables| tables.cursor());
     let mut subjects = vec![
         ("corner table", Fig10::new(&table, &ct_positions)),
         ("LR (owned)", Fig10::new(&lr, &lr_positions)),
@@ -435,8 +439,12 @@ pub fn run(
         "Zipper (owned)",
         Fig10::new(zipper.tables(), &zipper_positions),
     ));
-    if let Some(tables) = zipper_view.zipper() {
+    if let (Some(tables), Some(cursor)) = (zipper_view.zipper(), &zipper_cursor) {
         subjects.push(("Zipper (view)", Fig10::new(tables, &zipper_view_positions)));
+        subjects.push((
+            "Zipper (cursor)",
+            Fig10::new(cursor, &zipper_view_positions),
+        ));
     }
     subjects.push(("strips (CTS)", Fig10::new(&cts, &ct_positions)));
     let timed = interleaved_loops(&subjects, runs);

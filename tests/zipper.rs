@@ -8,7 +8,7 @@ use common::{
 };
 use lrmesh::generate::{self, Rng};
 use lrmesh::io::{read_mesh, ReadOptions};
-use lrmesh::lr::{CompactLr, CompactOptions, Lr, LrLayout, LrOptions, Zipper};
+use lrmesh::lr::{CompactLr, CompactOptions, Lr, LrLayout, LrOptions, Zipper, ZipperTables};
 use lrmesh::{CornerOps, CornerTable, Mesh};
 use proptest::prelude::*;
 
@@ -227,8 +227,41 @@ fn check_zipper_of(
     };
     let position = |v: lrmesh::Vertex| mesh.positions[zipper.input_vertex(v) as usize];
     check_against_table(tables, key, position, table, mesh);
+    check_against_table(&tables.cursor(), key, position, table, mesh);
+    check_cursor(tables);
     assert_same_up_to_rotation(&zipper.input_triangles(), &mesh.triangles, "zipper");
     zipper
+}
+
+/// A cursor reads every slot as the tables do, whatever the order of the reads: in slot
+/// order, then in a scattered order that makes it evict and decode blocks again and again.
+fn check_cursor(tables: &ZipperTables<Vec<u32>>) {
+    let m_r = tables.ring_vertices();
+    let mut order: Vec<u32> = (0..2 * m_r).collect();
+    let cursor = tables.cursor();
+    for pass in 0..2 {
+        for &s in &order {
+            let (v, side) = (s / 2, (s % 2) as usize);
+            assert_eq!(
+                (cursor.tip_and_wart(v, side), cursor.irregular(v, side)),
+                (tables.tip_and_wart(v, side), tables.irregular(v, side)),
+                "slot ({v}, {side}), pass {pass}"
+            );
+            for second in 0..2 {
+                assert_eq!(
+                    cursor.stored_opposite(v, side, second),
+                    tables.stored_opposite(v, side, second)
+                );
+            }
+        }
+        Rng::new(u64::from(m_r)).shuffle(&mut order);
+    }
+    for v in tables.vertices() {
+        assert_eq!(cursor.vertex_corner(v), tables.vertex_corner(v), "{v:?}.c");
+    }
+    for k in 0..3 * tables.t0_count() {
+        assert_eq!(cursor.t0_opposite(k), tables.t0_opposite(k), "T0 row {k}");
+    }
 }
 
 proptest! {

@@ -17,10 +17,11 @@ pub use round_trip::{
 
 use crate::format::Tag;
 use crate::io::{read_mesh_bytes, MeshFormat, ReadOptions};
+use crate::lr::LrLayout;
 use crate::ops::{self, CornerOps, Plane};
 use crate::read::{open, open_verified, Limits};
 use crate::write::{assemble, encode, Connectivity, EncodeOptions, DEFAULT_LEVEL};
-use crate::{generate, Vertex};
+use crate::{generate, Corner, Vertex};
 
 /// The fuzz targets, by name.
 pub const TARGETS: [&str; 10] = [
@@ -314,11 +315,34 @@ fn with_seams_and_parts(mesh: &mut crate::Mesh) {
 
 /// On a container that is only well formed: every operator of every corner answers an id in
 /// range (a corner of the mesh, a vertex below the bound), every attribute index is in range,
-/// and stars, valences, normals and contours end.
+/// and stars, valences, normals and contours end; so too through a Zipper's cursor.
 pub fn walk_in_range(file: &crate::Container) {
     let mesh = file.connectivity();
     let m = mesh.vertex_id_bound();
     let positions: Vec<[f32; 3]> = (0..m).map(|v| file.position(Vertex(v))).collect();
+    ops_in_range(mesh, |c| mesh.is_corner(c), &positions);
+    if let Some(tables) = file.zipper() {
+        let cursor = tables.cursor();
+        ops_in_range(&cursor, |c| cursor.is_corner(c), &positions);
+    }
+    for c in mesh.corners() {
+        for a in file.attributes() {
+            assert!(file.value_index(a, c) < a.value_count());
+        }
+    }
+    for v in mesh.vertices() {
+        file.output_vertex(v);
+    }
+}
+
+/// [`walk_in_range`]'s walk of the operators of `mesh`, whose corners are those `is_corner`
+/// accepts and whose vertex `v` is at `positions[v]`.
+fn ops_in_range<M: CornerOps>(
+    mesh: &M,
+    is_corner: impl Fn(Corner) -> bool,
+    positions: &[[f32; 3]],
+) {
+    let m = mesh.vertex_id_bound();
     for c in mesh.corners() {
         assert!(mesh.vertex(c).0 < m);
         assert!(mesh.triangle(c).0 < mesh.triangle_id_bound());
@@ -331,26 +355,22 @@ pub fn walk_in_range(file: &crate::Container) {
                     .flatten(),
             )
         {
-            assert!(mesh.is_corner(d), "corner {c} leads to {d}, not a corner");
-        }
-        for a in file.attributes() {
-            assert!(file.value_index(a, c) < a.value_count());
+            assert!(is_corner(d), "corner {c} leads to {d}, not a corner");
         }
     }
     for v in mesh.vertices() {
         if let Some(c) = mesh.vertex_corner(v) {
-            assert!(mesh.is_corner(c));
+            assert!(is_corner(c));
         }
-        assert!(ops::star(mesh, v).all(|c| mesh.is_corner(c)));
+        assert!(ops::star(mesh, v).all(&is_corner));
         ops::valence(mesh, v);
-        ops::vertex_normal(mesh, &positions, v);
-        file.output_vertex(v);
+        ops::vertex_normal(mesh, positions, v);
     }
     let plane = Plane {
         normal: [0.3, -0.2, 1.0],
         offset: 0.1,
     };
-    ops::contours(mesh, &positions, &plane);
+    ops::contours(mesh, positions, &plane);
 }
 
 /// Every operator of every corner answers with a valid id, and every attribute a value in
@@ -401,6 +421,17 @@ fn walk(file: &crate::Container) {
         ops::vertex_normal(mesh, &positions, v);
     }
     assert!(corners_seen <= mesh.corners().count());
+    if let Some(tables) = file.zipper() {
+        // A cursor answers as its tables do.
+        let cursor = tables.cursor();
+        for c in tables.corners() {
+            assert_eq!(cursor.vertex(c), tables.vertex(c));
+            assert_eq!(cursor.opposite(c), tables.opposite(c));
+        }
+        for v in tables.vertices() {
+            assert_eq!(cursor.vertex_corner(v), tables.vertex_corner(v));
+        }
+    }
     let plane = Plane {
         normal: [0.3, -0.2, 1.0],
         offset: 0.1,

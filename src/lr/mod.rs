@@ -55,7 +55,7 @@ pub use compact::{CompactLr, CompactOptions, CompactStats, CompactTables};
 pub use open_fans::OpenFans;
 pub(crate) use tables::{bits_and_ranks, boundaries_on_ring_given, one_ring_next_next, ring_bits};
 pub use tables::{LrLayout, LrTables, IRREGULAR, NULL, VALUE, WART};
-pub use zipper::{Zipper, ZipperStats, ZipperTables};
+pub use zipper::{Zipper, ZipperCursor, ZipperStats, ZipperTables};
 
 use crate::corner_table::NONE;
 use crate::ids::{Corner, Triangle, Vertex};

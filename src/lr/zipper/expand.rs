@@ -4,10 +4,11 @@
 //! and T0 corners resolved once. The LR's operators answer as the Zipper's do, several times
 //! faster.
 
+use super::slots::{implied_wart, Slot, LEFT_SLOTS};
 use super::tables::ZipperTables;
 use super::{BLOCK_SHIFT, DELTAS, FOUR, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PREVIOUS, RECORD_WORDS};
 use crate::lr::read_back::{push_slot, with_slots};
-use crate::lr::tables::{LrTables, LEFT, RIGHT, VALUE};
+use crate::lr::tables::{LrLayout, LrTables, LEFT, NULL, RIGHT, VALUE, WART};
 use crate::words::Words;
 
 impl<W: Words> ZipperTables<W> {
@@ -26,45 +27,148 @@ impl<W: Words> ZipperTables<W> {
     /// whether it is irregular, as `tip_and_wart` and `irregular` give them: block by
     /// block, each block's planes read once and each side's chain followed slot by slot.
     pub(crate) fn each_slot(&self, mut f: impl FnMut((u32, usize), (u32, bool, bool))) {
-        let m_r = self.m_r;
-        let blocks = (m_r as usize).div_ceil(1 << BLOCK_SHIFT);
+        let blocks = (self.m_r as usize).div_ceil(1 << BLOCK_SHIFT);
         for block in 0..blocks {
-            let mut slot = self.block_planes(block);
-            let first = (block << BLOCK_SHIFT) as u32;
-            // Each side's chain value, and the next exception word and record, in slot
-            // order: a slot's tip as `tip_and_wart` gives it, without summing the chain
-            // from the last stored slot for every slot.
-            let mut chain = [LEFT, RIGHT].map(|side| self.chain_head(block, side));
-            let fours = self.block_fours(&slot);
-            let (mut x, mut r) = (self.before_block(block, 0), self.before_block(block, 1));
-            for v in first..m_r.min(first + (1 << BLOCK_SHIFT)) {
-                for side in [LEFT, RIGHT] {
-                    slot.bit = 2 * (v - first) + side as u32;
-                    let four = fours >> slot.bit & 1 != 0;
-                    let read = match slot.symbol_at(slot.bit) {
-                        s if s < DELTAS || four => {
-                            chain[side] = chain[side].wrapping_sub(if four { FOUR } else { s });
-                            let wart = self.before_t2(v, side, slot.group());
-                            (chain[side], wart, false)
-                        }
-                        s @ (PREVIOUS | NEXT_NEXT_OR_NULL) => {
-                            (self.ring_rule_tip(&slot, v, side, s), false, false)
-                        }
-                        s => {
-                            let irregular = s == IRREGULAR_SLOT;
-                            let word = match irregular {
-                                true => self.records.at(RECORD_WORDS * r),
-                                false => self.exceptions.at(x),
-                            };
-                            (r, x) = (r + irregular as usize, x + !irregular as usize);
-                            chain[side] = word & VALUE;
-                            let wart = self.stored_slot_wart(v, side, word, slot.group());
-                            (word & VALUE, wart, irregular)
-                        }
-                    };
-                    f((v, side), read);
-                }
+            self.each_slot_of_block(block, &mut f);
+        }
+    }
+
+    /// [`each_slot`](Self::each_slot) for the slots of block `block` alone (of ring vertices
+    /// `64 block ..`, at most 64, below `m_r`). The ring steps the slots need (`v.n` for the
+    /// next slot's symbol, `v.p` and `v.n.n` for the ring rules' tips) are taken from the
+    /// block's ring ends, found once, instead of from the ring tables for every slot.
+    pub(crate) fn each_slot_of_block(
+        &self,
+        block: usize,
+        mut f: impl FnMut((u32, usize), (u32, bool, bool)),
+    ) {
+        let m_r = self.m_r;
+        let first = (block << BLOCK_SHIFT) as u32;
+        let end = m_r.min(first + (1 << BLOCK_SHIFT));
+        if first >= end {
+            return;
+        }
+        let mut slot = self.block_planes(block);
+        let ring = BlockRing::new(self, first, end);
+        // Each side's chain value, and the next exception word and record, in slot order: a
+        // slot's tip as `tip_and_wart` gives it, without summing the chain from the last
+        // stored slot for every slot.
+        let mut chain = [LEFT, RIGHT].map(|side| self.chain_head(block, side));
+        let fours = self.block_fours(&slot);
+        let (mut x, mut r) = (self.before_block(block, 0), self.before_block(block, 1));
+        // Whether the next slot of (v, side)'s side has symbol 4: in the block's planes when
+        // `v.n` is `v + 1` in the block, else read as `next_is_t2` reads it.
+        let next_is_t2 = |slot: &Slot, v: u32, side: usize| {
+            let next = ring.next(self, v);
+            let symbol = match next == v + 1 && next < end {
+                true => slot.symbol_at(slot.bit + 2),
+                false => self.symbol(next, side),
+            };
+            symbol == PREVIOUS
+        };
+        let right_fours = self.four_sides & LEFT_SLOTS << RIGHT != 0;
+        for v in first..end {
+            for side in [LEFT, RIGHT] {
+                slot.bit = 2 * (v - first) + side as u32;
+                let four = fours >> slot.bit & 1 != 0;
+                let read = match slot.symbol_at(slot.bit) {
+                    s if s < DELTAS || four => {
+                        chain[side] = chain[side].wrapping_sub(if four { FOUR } else { s });
+                        let wart = self.wart_deltas && next_is_t2(&slot, v, side);
+                        (chain[side], wart, false)
+                    }
+                    PREVIOUS => (ring.prev(self, v), false, false),
+                    NEXT_NEXT_OR_NULL => {
+                        // `ring_rule_tip`: NULL on a right side without fours unless the
+                        // slot comes before a canonical T2, else `v.n.n`.
+                        let null = side == RIGHT
+                            && !right_fours
+                            && !(self.wart_deltas && next_is_t2(&slot, v, side));
+                        let tip = if null { NULL } else { ring.next_next(self, v) };
+                        (tip, false, false)
+                    }
+                    s => {
+                        let irregular = s == IRREGULAR_SLOT;
+                        let word = match irregular {
+                            true => self.records.at(RECORD_WORDS * r),
+                            false => self.exceptions.at(x),
+                        };
+                        (r, x) = (r + irregular as usize, x + !irregular as usize);
+                        chain[side] = word & VALUE;
+                        // `stored_slot_wart`.
+                        let wart = match self.implied_warts {
+                            false => word & WART != 0,
+                            true => implied_wart(
+                                next_is_t2(&slot, v, side),
+                                word & VALUE,
+                                ring.next_next(self, v),
+                            ),
+                        };
+                        (word & VALUE, wart, irregular)
+                    }
+                };
+                f((v, side), read);
             }
+        }
+    }
+}
+
+/// The ring steps of the vertices of one block, `first .. end`: which of them end their
+/// ring (`lasts`) and which start one (`firsts`), bit `v - first`, read once; a step from
+/// a ring end (or from outside the block) is left to the ring tables.
+struct BlockRing {
+    first: u32,
+    end: u32,
+    lasts: u64,
+    firsts: u64,
+    one_ring: bool,
+}
+
+impl BlockRing {
+    fn new<W: Words>(t: &ZipperTables<W>, first: u32, end: u32) -> BlockRing {
+        let one_ring = t.ring_count() == 1;
+        let is_last = |v: u32| match one_ring {
+            true => v + 1 == t.ring_vertices(),
+            false => t.is_last(v),
+        };
+        let mut lasts = 0u64;
+        for v in first..end {
+            lasts |= (is_last(v) as u64) << (v - first);
+        }
+        let first_starts = first == 0 || is_last(first - 1);
+        BlockRing {
+            first,
+            end,
+            lasts,
+            firsts: lasts << 1 | first_starts as u64,
+            one_ring,
+        }
+    }
+
+    /// `v.n`, as `ring_next` gives it.
+    #[inline(always)]
+    fn next<W: Words>(&self, t: &ZipperTables<W>, v: u32) -> u32 {
+        match v >= self.first && v < self.end && self.lasts >> (v - self.first) & 1 == 0 {
+            true => v + 1,
+            false => t.ring_next(v),
+        }
+    }
+
+    /// `v.p`, as `ring_prev` gives it (`v` in the block).
+    #[inline(always)]
+    fn prev<W: Words>(&self, t: &ZipperTables<W>, v: u32) -> u32 {
+        match self.firsts >> (v - self.first) & 1 == 0 {
+            true => v - 1,
+            false => t.ring_prev(v),
+        }
+    }
+
+    /// `v.n.n`, as `ring_next_next` gives it.
+    #[inline(always)]
+    fn next_next<W: Words>(&self, t: &ZipperTables<W>, v: u32) -> u32 {
+        match self.one_ring {
+            true => t.ring_next_next(v),
+            false => self.next(t, self.next(t, v)),
         }
     }
 }

@@ -35,12 +35,14 @@
 //! first one is). Rings and C are the standard LR's, and so are every id and flag: every
 //! operator is [`LrLayout`](super::LrLayout)'s and answers as the standard LR does.
 
+mod cursor;
 mod encode;
 mod expand;
 mod packed;
 mod slots;
 mod tables;
 
+pub use cursor::{ZipperCursor, CACHED_BLOCKS};
 pub(crate) use encode::ring_blocks;
 pub use packed::{
     first_bit, join_bits, list_fields, packed_words, ring_block_field, unjoined_zipr, Field,

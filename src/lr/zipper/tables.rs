@@ -230,6 +230,30 @@ impl<W: Words> ZipperTables<W> {
     }
 }
 
+impl<W: Words> ZipperTables<W> {
+    /// The opposite of T0 corner row `k`, its ring-rule cases (`find_left`, `find_right`)
+    /// answered through `layout`: these tables, or a [`ZipperCursor`](super::ZipperCursor)
+    /// over them.
+    #[inline]
+    pub(crate) fn t0_opposite_in<L: LrLayout>(&self, layout: &L, k: u32) -> u32 {
+        let (j, i) = (k / 3, k % 3);
+        let word = self.t0_codes.at(j as usize);
+        let code = word >> (2 * i) & 3;
+        let row_vertex = |i: u32| self.t0_vertex(3 * j + i % 3);
+        match code {
+            BY_LEFT_RULE => layout.find_left(row_vertex(i + 1), row_vertex(i + 2)),
+            BY_RIGHT_RULE => layout.find_right(row_vertex(i + 1), row_vertex(i + 2)),
+            NO_OPPOSITE => NONE,
+            _ => {
+                // Explicit: after the row's explicit opposites of the corners before it.
+                let before = (0..i).filter(|&e| word >> (2 * e) & 3 == EXPLICIT).count();
+                self.t0_explicit
+                    .at((word >> EXPLICIT_SHIFT) as usize + before)
+            }
+        }
+    }
+}
+
 impl<W: Words> LrLayout for ZipperTables<W> {
     #[inline]
     fn ring_vertices(&self) -> u32 {
@@ -379,21 +403,7 @@ impl<W: Words> LrLayout for ZipperTables<W> {
     }
     #[inline]
     fn t0_opposite(&self, k: u32) -> u32 {
-        let (j, i) = (k / 3, k % 3);
-        let word = self.t0_codes.at(j as usize);
-        let code = word >> (2 * i) & 3;
-        let row_vertex = |i: u32| self.t0_vertex(3 * j + i % 3);
-        match code {
-            BY_LEFT_RULE => self.find_left(row_vertex(i + 1), row_vertex(i + 2)),
-            BY_RIGHT_RULE => self.find_right(row_vertex(i + 1), row_vertex(i + 2)),
-            NO_OPPOSITE => NONE,
-            _ => {
-                // Explicit: after the row's explicit opposites of the corners before it.
-                let before = (0..i).filter(|&e| word >> (2 * e) & 3 == EXPLICIT).count();
-                self.t0_explicit
-                    .at((word >> EXPLICIT_SHIFT) as usize + before)
-            }
-        }
+        self.t0_opposite_in(self, k)
     }
     #[inline]
     fn boundaries_on_ring(&self) -> bool {

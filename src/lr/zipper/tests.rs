@@ -59,6 +59,11 @@ fn most_reads(mesh: &crate::Mesh) -> ([usize; 10], bool) {
     let z = Zipper::build(&ct, &LrOptions::default()).unwrap();
     let reads = Cell::new(0);
     let t = counting(z.tables(), &reads);
+    (most_reads_of(&z, &t, &reads), z.tables().boundaries_on_ring)
+}
+
+/// [`most_reads`] of the operators of `t`, which reads `z`'s tables counting in `reads`.
+fn most_reads_of<L: CornerOps>(z: &Zipper, t: &L, reads: &Cell<usize>) -> [usize; 10] {
     let corners: Vec<Corner> = z.tables().corners().collect();
     let mut most = [0usize; 10];
     let mut count = |k: usize, f: &dyn Fn()| {
@@ -102,7 +107,7 @@ fn most_reads(mesh: &crate::Mesh) -> ([usize; 10], bool) {
             std::hint::black_box(t.vertex_corner(Vertex(v)));
         });
     }
-    (most, z.tables().boundaries_on_ring)
+    most
 }
 
 /// The bound OPERATORS.md §8.5 states.
@@ -150,6 +155,39 @@ fn every_operator_reads_a_bounded_number_of_words() {
         }
     }
     assert!(largest.iter().all(|&m| m <= MOST_WORDS), "{largest:?}");
+}
+
+/// The bound OPERATORS.md §8.6 states for a cursor's operator.
+const CURSOR_MOST_WORDS: usize = 4_000;
+
+/// Through a cursor, an operator reads at most what its slot reads decode: the first read of
+/// a slot in a block reads as the tables do, the second decodes the block (its planes, head,
+/// stored words and ring ends). One cursor is kept across the walk, so that each count
+/// includes the blocks its operator decoded.
+#[test]
+fn a_cursor_reads_a_bounded_number_of_words() {
+    let mut rng = generate::Rng::new(9);
+    let mut holes = generate::irregular_torus(20_000, 3);
+    generate::punch_holes(&mut holes, 40, &mut rng);
+    let meshes = [
+        generate::torus(3, 4),
+        generate::irregular_torus(20_000, 2),
+        holes,
+        generate::soup(30, 80, &mut rng),
+    ];
+    let mut largest = 0;
+    for mesh in &meshes {
+        let ct = CornerTable::from_mesh(mesh).unwrap();
+        let z = Zipper::build(&ct, &LrOptions::default()).unwrap();
+        let reads = Cell::new(0);
+        let t = counting(z.tables(), &reads);
+        let kept = most_reads_of(&z, &t.cursor(), &reads);
+        let on_ring = z.tables().boundaries_on_ring;
+        eprintln!("most words read through a cursor: {kept:?}, boundaries on the ring: {on_ring}");
+        let counted = kept.iter().take(if on_ring { 10 } else { 9 });
+        largest = largest.max(*counted.max().unwrap());
+    }
+    assert!(largest <= CURSOR_MOST_WORDS, "{largest}");
 }
 
 /// The standard LR tables a Zipper is read back as answer every operator as the Zipper

@@ -1,0 +1,192 @@
+//! A reader of Zipper tables for loops over a mesh: the same operators, with the slots of the
+//! blocks read last kept decoded (`spec/OPERATORS.md` §8.6).
+//!
+//! Every Zipper operator reads slot fields (a tip, the WART and IRREGULAR flags), and each
+//! such read decodes the slot from its block's symbol planes: about 250–300 instructions,
+//! most of an operator's time (the valence loop reads some 20 slots per vertex). The
+//! operators of a loop keep returning to the same few blocks: those of the vertex at hand
+//! and of the ring rows beside it. [`ZipperCursor`] decodes a block's 128 slots in one pass
+//! (`ZipperTables::each_slot_of_block`, which follows each chain slot by slot instead of
+//! summing it from the block's start for every slot) when a block is read for the second
+//! time in a row through its cache entry, and keeps the last [`CACHED_BLOCKS`] blocks so: a
+//! slot read is then one word. The first read of a block is answered from the tables, so
+//! that a walk that passes through blocks (a contour) decodes fewer of them. Each operator
+//! still reads a bounded number of words (the blocks it decodes on top of the tables'
+//! reads), so it stays constant time on the loaded bytes, and on a valid file it answers
+//! exactly as the tables do (on a file that is only well formed, both answer in range).
+
+use super::tables::ZipperTables;
+use super::BLOCK_SHIFT;
+use crate::lr::tables::{LrLayout, IRREGULAR, NULL, RIGHT, VALUE, WART};
+use crate::words::Words;
+use std::cell::Cell;
+
+/// Blocks kept decoded, direct-mapped by the block's low bits: 256 blocks of 64 ring
+/// vertices (about 130 KiB) hold the rows a fan reaches on the scanned meshes.
+pub const CACHED_BLOCKS: usize = 256;
+
+/// Slots in a block: two per ring vertex.
+const SLOTS: usize = 2 << BLOCK_SHIFT;
+
+/// One block's slots, decoded: each slot's word as the standard LR stores it (the tip, with
+/// the `WART` and `IRREGULAR` flags), so that a read is one word.
+#[derive(Debug)]
+struct DecodedBlock {
+    /// The block, or `usize::MAX` for none yet.
+    block: Cell<usize>,
+    /// The last other block read through this entry, read from the tables then: a block is
+    /// decoded on its second read in a row through the entry, so that a walk that reads one
+    /// slot here and one there neither pays a block's decoding for each nor evicts the
+    /// blocks a loop keeps returning to.
+    missed: Cell<usize>,
+    words: [Cell<u32>; SLOTS],
+}
+
+/// The operators of a [`ZipperTables`] (through [`LrLayout`], hence
+/// [`CornerOps`](crate::ops::CornerOps)) with the slots of recently read blocks kept
+/// decoded; see the module documentation. Its answers are the tables' own. A cursor keeps
+/// its cache in cells, so it is not `Sync`: make one per thread (`ZipperTables::cursor`).
+#[derive(Debug)]
+pub struct ZipperCursor<'a, W: Words> {
+    tables: &'a ZipperTables<W>,
+    m_r: u32,
+    cache: Vec<DecodedBlock>,
+}
+
+impl<W: Words> ZipperTables<W> {
+    /// A cursor over these tables (see [`ZipperCursor`]).
+    pub fn cursor(&self) -> ZipperCursor<'_, W> {
+        let empty = || DecodedBlock {
+            block: Cell::new(usize::MAX),
+            missed: Cell::new(usize::MAX),
+            words: std::array::from_fn(|_| Cell::new(0)),
+        };
+        ZipperCursor {
+            tables: self,
+            m_r: self.ring_vertices(),
+            cache: (0..CACHED_BLOCKS).map(|_| empty()).collect(),
+        }
+    }
+}
+
+impl<W: Words> ZipperCursor<'_, W> {
+    /// The tables read.
+    pub fn tables(&self) -> &ZipperTables<W> {
+        self.tables
+    }
+
+    /// The word of slot `(v, side)`: its tip with the `WART` and `IRREGULAR` flags, from
+    /// the cache (the block decoded first when it is read for the second time in a row
+    /// through its entry), or from the tables. A vertex past the ring (which only a file
+    /// that is not semantically valid asks for) is read from the tables as they read it.
+    #[inline(always)]
+    fn slot(&self, v: u32, side: usize) -> u32 {
+        let block = (v >> BLOCK_SHIFT) as usize;
+        let entry = &self.cache[block % CACHED_BLOCKS];
+        let i = 2 * (v as usize & ((1 << BLOCK_SHIFT) - 1)) + side;
+        if entry.block.get() == block && v < self.m_r {
+            return entry.words[i].get();
+        }
+        let t = self.tables;
+        if v >= self.m_r || entry.missed.get() != block {
+            entry.missed.set(block);
+            let (tip, wart) = t.tip_and_wart(v, side);
+            return word(tip, wart, t.irregular(v, side));
+        }
+        entry.block.set(block);
+        let first = (block << BLOCK_SHIFT) as u32;
+        t.each_slot_of_block(block, |(u, s), (tip, wart, irregular)| {
+            entry.words[2 * (u - first) as usize + s].set(word(tip, wart, irregular));
+        });
+        entry.words[i].get()
+    }
+}
+
+/// A slot's word: its tip with the `WART` and `IRREGULAR` flags.
+#[inline(always)]
+fn word(tip: u32, wart: bool, irregular: bool) -> u32 {
+    tip | if wart { WART } else { 0 } | if irregular { IRREGULAR } else { 0 }
+}
+
+impl<W: Words> LrLayout for ZipperCursor<'_, W> {
+    #[inline]
+    fn ring_vertices(&self) -> u32 {
+        self.tables.ring_vertices()
+    }
+    #[inline]
+    fn vertex_count(&self) -> u32 {
+        self.tables.vertex_count()
+    }
+    #[inline]
+    fn t0_count(&self) -> u32 {
+        self.tables.t0_count()
+    }
+    #[inline]
+    fn ring_count(&self) -> usize {
+        self.tables.ring_count()
+    }
+    #[inline]
+    fn ring_start(&self, ring: usize) -> u32 {
+        self.tables.ring_start(ring)
+    }
+    #[inline(always)]
+    fn is_last(&self, v: u32) -> bool {
+        self.tables.is_last(v)
+    }
+    #[inline(always)]
+    fn ring_of(&self, v: u32) -> usize {
+        self.tables.ring_of(v)
+    }
+    #[inline]
+    fn ring_last_word(&self, i: usize) -> u32 {
+        self.tables.ring_last_word(i)
+    }
+    #[inline]
+    fn ring_rank_word(&self, i: usize) -> u32 {
+        self.tables.ring_rank_word(i)
+    }
+    #[inline(always)]
+    fn tip(&self, v: u32, side: usize) -> u32 {
+        self.slot(v, side) & VALUE
+    }
+    #[inline(always)]
+    fn wart(&self, v: u32, side: usize) -> bool {
+        self.slot(v, side) & WART != 0
+    }
+    #[inline(always)]
+    fn irregular(&self, v: u32, side: usize) -> bool {
+        self.slot(v, side) & IRREGULAR != 0
+    }
+    #[inline(always)]
+    fn tip_and_wart(&self, v: u32, side: usize) -> (u32, bool) {
+        let word = self.slot(v, side);
+        (word & VALUE, word & WART != 0)
+    }
+    #[inline(always)]
+    fn right_is_null(&self, v: u32) -> bool {
+        self.slot(v, RIGHT) & VALUE == NULL
+    }
+    #[inline(always)]
+    fn stored_opposite(&self, v: u32, side: usize, second: usize) -> Option<u32> {
+        match self.slot(v, side) & IRREGULAR != 0 {
+            true => self.tables.stored_opposite(v, side, second),
+            false => None,
+        }
+    }
+    #[inline]
+    fn t0_vertex(&self, k: u32) -> u32 {
+        self.tables.t0_vertex(k)
+    }
+    #[inline]
+    fn t0_opposite(&self, k: u32) -> u32 {
+        self.tables.t0_opposite_in(self, k)
+    }
+    #[inline]
+    fn isolated_corner(&self, i: u32) -> u32 {
+        self.tables.isolated_corner(i)
+    }
+    #[inline]
+    fn boundaries_on_ring(&self) -> bool {
+        self.tables.boundaries_on_ring()
+    }
+}
