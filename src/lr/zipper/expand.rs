@@ -4,11 +4,11 @@
 //! and T0 corners resolved once. The LR's operators answer as the Zipper's do, several times
 //! faster.
 
-use super::slots::{implied_wart, Slot, LEFT_SLOTS};
+use super::slots::Slot;
 use super::tables::ZipperTables;
 use super::{BLOCK_SHIFT, DELTAS, FOUR, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PREVIOUS, RECORD_WORDS};
 use crate::lr::read_back::{push_slot, with_slots};
-use crate::lr::tables::{LrLayout, LrTables, LEFT, NULL, RIGHT, VALUE, WART};
+use crate::lr::tables::{LrLayout, LrTables, LEFT, NULL, RIGHT, VALUE};
 use crate::words::Words;
 
 impl<W: Words> ZipperTables<W> {
@@ -66,7 +66,6 @@ impl<W: Words> ZipperTables<W> {
             };
             symbol == PREVIOUS
         };
-        let right_fours = self.four_sides & LEFT_SLOTS << RIGHT != 0;
         for v in first..end {
             for side in [LEFT, RIGHT] {
                 slot.bit = 2 * (v - first) + side as u32;
@@ -79,11 +78,8 @@ impl<W: Words> ZipperTables<W> {
                     }
                     PREVIOUS => (ring.prev(self, v), false, false),
                     NEXT_NEXT_OR_NULL => {
-                        // `ring_rule_tip`: NULL on a right side without fours unless the
-                        // slot comes before a canonical T2, else `v.n.n`.
-                        let null = side == RIGHT
-                            && !right_fours
-                            && !(self.wart_deltas && next_is_t2(&slot, v, side));
+                        // As `ring_rule_tip` gives it.
+                        let null = self.rule_5_is_null_given(side, || next_is_t2(&slot, v, side));
                         let tip = if null { NULL } else { ring.next_next(self, v) };
                         (tip, false, false)
                     }
@@ -95,15 +91,11 @@ impl<W: Words> ZipperTables<W> {
                         };
                         (r, x) = (r + irregular as usize, x + !irregular as usize);
                         chain[side] = word & VALUE;
-                        // `stored_slot_wart`.
-                        let wart = match self.implied_warts {
-                            false => word & WART != 0,
-                            true => implied_wart(
-                                next_is_t2(&slot, v, side),
-                                word & VALUE,
-                                ring.next_next(self, v),
-                            ),
-                        };
+                        let wart = self.stored_wart_given(
+                            word,
+                            || next_is_t2(&slot, v, side),
+                            || ring.next_next(self, v),
+                        );
                         (word & VALUE, wart, irregular)
                     }
                 };

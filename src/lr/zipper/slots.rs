@@ -322,13 +322,26 @@ impl<W: Words> ZipperTables<W> {
     /// and its tip is not `v.n.n` (FORMAT.md §3.5e.5).
     #[inline(always)]
     pub(crate) fn stored_slot_wart(&self, v: u32, side: usize, word: u32, group: [u32; 3]) -> bool {
+        self.stored_wart_given(
+            word,
+            || self.next_is_t2(v, side, group),
+            || self.ring_next_next(v),
+        )
+    }
+
+    /// [`stored_slot_wart`](Self::stored_slot_wart) with the slot's ring steps asked of
+    /// `next_is_t2` and `next_next` (only with `IMPLIED_WARTS`): a block decoded in one pass
+    /// takes them from the block's ring ends.
+    #[inline(always)]
+    pub(crate) fn stored_wart_given(
+        &self,
+        word: u32,
+        next_is_t2: impl FnOnce() -> bool,
+        next_next: impl FnOnce() -> u32,
+    ) -> bool {
         match self.implied_warts {
             false => word & WART != 0,
-            true => implied_wart(
-                self.next_is_t2(v, side, group),
-                word & VALUE,
-                self.ring_next_next(v),
-            ),
+            true => implied_wart(next_is_t2(), word & VALUE, next_next()),
         }
     }
 
@@ -375,8 +388,20 @@ impl<W: Words> ZipperTables<W> {
     /// canonical T2 (`v.n.n` otherwise). `group` as for [`before_t2`](Self::before_t2).
     #[inline(always)]
     pub(crate) fn rule_5_is_null(&self, v: u32, side: usize, group: [u32; 3]) -> bool {
+        self.rule_5_is_null_given(side, || self.next_is_t2(v, side, group))
+    }
+
+    /// [`rule_5_is_null`](Self::rule_5_is_null) with whether the next slot of the side has
+    /// symbol 4 asked of `next_is_t2` (only on a right side without fours, with
+    /// `WART_DELTAS`).
+    #[inline(always)]
+    pub(crate) fn rule_5_is_null_given(
+        &self,
+        side: usize,
+        next_is_t2: impl FnOnce() -> bool,
+    ) -> bool {
         side == RIGHT
             && self.four_sides & LEFT_SLOTS << RIGHT == 0
-            && !self.before_t2(v, side, group)
+            && !(self.wart_deltas && next_is_t2())
     }
 }
