@@ -7,7 +7,11 @@
 # keep it in corpus/fuzz/regressions/<target>/ so that `cargo test` replays it.
 # FUZZ_SEED fixes libFuzzer's random seed, so that a run from the committed seeds explores the
 # same inputs each time (CI uses it: its short runs repeat a prefix of longer local runs).
+# The targets build with 16 codegen units instead of cargo-fuzz's 1: on two cores the build
+# takes about 7.5 minutes instead of 11, for runs a little slower; `run` takes the same
+# options, or it would build everything again.
 set -euo pipefail
+build_options=(--codegen-units 16)
 seconds="${1:-60}"
 seed_option=()
 [ -n "${FUZZ_SEED:-}" ] && seed_option=(-seed="$FUZZ_SEED")
@@ -20,14 +24,14 @@ if ! cargo +nightly fuzz --version >/dev/null 2>&1; then
     echo "fuzz: cargo-fuzz is not installed (cargo install cargo-fuzz); skipped"
     exit 0
 fi
-cargo +nightly fuzz build
+cargo +nightly fuzz build "${build_options[@]}"
 log=$(mktemp)
 for target in $(cargo +nightly fuzz list); do
     mkdir -p "corpus/$target"
     seeds=()
     [ -d "../corpus/fuzz/$target" ] && seeds=("../corpus/fuzz/$target")
     status=0
-    cargo +nightly fuzz run "$target" "corpus/$target" "${seeds[@]}" -- \
+    cargo +nightly fuzz run "${build_options[@]}" "$target" "corpus/$target" "${seeds[@]}" -- \
         -max_total_time="$seconds" -rss_limit_mb=2048 -print_final_stats=1 "${seed_option[@]}" \
         >"$log" 2>&1 || status=$?
     runs=$(grep -E "^stat::number_of_executed_units" "$log" | awk '{print $2}')
