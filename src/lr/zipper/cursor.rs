@@ -102,14 +102,14 @@ impl<W: Words> ZipperCursor<'_, W> {
     /// not semantically valid asks for) is always read from the tables.
     #[inline(always)]
     fn cached(&self, v: u32, side: usize) -> Option<u32> {
+        if v >= self.m_r {
+            return None;
+        }
         let block = (v >> BLOCK_SHIFT) as usize;
         let entry = &self.cache[block % CACHED_BLOCKS];
         let i = 2 * (v as usize & ((1 << BLOCK_SHIFT) - 1)) + side;
-        if entry.block.get() == block && v < self.m_r {
+        if entry.block.get() == block {
             return Some(entry.words[i].get());
-        }
-        if v >= self.m_r {
-            return None;
         }
         let now = self.clock.get().wrapping_add(1);
         self.clock.set(now);

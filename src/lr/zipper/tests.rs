@@ -162,8 +162,8 @@ const CURSOR_MOST_WORDS: usize = 4_000;
 
 /// Through a cursor, an operator reads at most what its slot reads decode: a read of a slot
 /// in a block not decoded reads as the tables do, the one that decodes the block reads its
-/// planes, head, stored words and ring ends. One cursor is kept across the walk, so that each count
-/// includes the blocks its operator decoded.
+/// planes, head, stored words and ring ends. One cursor is kept across the walk, so that
+/// each count includes the blocks its operator decoded.
 #[test]
 fn a_cursor_reads_a_bounded_number_of_words() {
     let mut rng = generate::Rng::new(9);
