@@ -443,69 +443,70 @@ pub trait LrLayout {
         }
     }
 
+    /// A triangle of side `side` that holds half-edge `a -> b` (on the left: facing an edge
+    /// `b -> a` of a left triangle) or `b -> a` (on the right): the corner facing it, or
+    /// `NONE`. Such a triangle is the slot of `b` with tip `a`, or the slot of `a.p` (or of
+    /// `a.p.p`, a wart's) with tip `b`; the two sides mirror each other, so that one body
+    /// serves both with the side a value rather than a branch.
+    #[inline(always)]
+    fn find(&self, side: usize, a: u32, b: u32) -> u32 {
+        let m_r = self.ring_vertices();
+        // Corner of the tip's slot facing the edge, and of a slot of `a.p`'s.
+        let (at_b, at_p) = (2 + 2 * side as u32, 6 * side as u32);
+        if b < m_r && self.tip(b, side) == a {
+            return self.canonical_given(8 * b + at_b, a);
+        }
+        if a < m_r {
+            let p = self.ring_prev(a);
+            if self.tip_and_wart(p, side) == (b, false) {
+                return self.canonical_given(8 * p + at_p, b);
+            }
+            let pp = self.ring_prev(p);
+            if self.wart(pp, side) && self.tip(pp, side) == b {
+                return self.canonical_given(8 * pp + at_p, b);
+            }
+        }
+        NONE
+    }
+
     /// A left triangle holding half-edge `y -> x` (facing an edge `x -> y` of a left
     /// triangle): the corner facing it, or `NONE`.
     #[inline(always)]
     fn find_left(&self, x: u32, y: u32) -> u32 {
-        let m_r = self.ring_vertices();
-        if y < m_r && self.tip(y, LEFT) == x {
-            return self.canonical_given(8 * y + 2, x);
-        }
-        if x < m_r {
-            let p = self.ring_prev(x);
-            if self.tip_and_wart(p, LEFT) == (y, false) {
-                return self.canonical_given(8 * p, y);
-            }
-            let pp = self.ring_prev(p);
-            if self.wart(pp, LEFT) && self.tip(pp, LEFT) == y {
-                return self.canonical_given(8 * pp, y);
-            }
-        }
-        NONE
+        self.find(LEFT, x, y)
     }
 
     /// A right triangle holding half-edge `y -> x`: the corner facing it, or `NONE`.
     #[inline(always)]
     fn find_right(&self, x: u32, y: u32) -> u32 {
-        let m_r = self.ring_vertices();
-        if x < m_r && self.tip(x, RIGHT) == y {
-            return self.canonical_given(8 * x + 4, y);
-        }
-        if y < m_r {
-            let p = self.ring_prev(y);
-            if self.tip_and_wart(p, RIGHT) == (x, false) {
-                return self.canonical_given(8 * p + 6, x);
-            }
-            let pp = self.ring_prev(p);
-            if self.wart(pp, RIGHT) && self.tip(pp, RIGHT) == x {
-                return self.canonical_given(8 * pp + 6, x);
-            }
-        }
-        NONE
+        self.find(RIGHT, y, x)
     }
 
-    /// `c.o` for a canonical corner, as a raw id (`NONE` on a boundary).
+    /// `c.o` for a canonical corner, as a raw id (`NONE` on a boundary). Written with the
+    /// corner's side and position as values, not a `match` on them: a jump table there is
+    /// an indirect branch that a walk around a vertex mispredicts at most steps.
     #[inline(always)]
     fn opposite_raw(&self, c: u32) -> u32 {
         let m_r = self.ring_vertices();
         if c >= 8 * m_r {
             return self.t0_opposite(c - c / 4 - 6 * m_r);
         }
-        let (v, i) = (c >> 3, c & 7);
-        let side = (i >> 2) as usize;
-        if i == 1 || i == 5 {
+        let v = c >> 3;
+        let side = (c >> 2 & 1) as usize;
+        if c & 3 == 1 {
             // The corner facing the ring edge (or, in a wart slot, the wart's edge).
             return if self.wart(v, side) {
-                8 * self.ring_next(v) + if side == LEFT { 0 } else { 6 }
+                8 * self.ring_next(v) + 6 * side as u32
             } else {
                 self.across(v, side)
             };
         }
-        if let Some(o) = self.stored_opposite(v, side, (i == 2 || i == 6) as usize) {
+        let second = (c >> 1 & 1) as usize;
+        if let Some(o) = self.stored_opposite(v, side, second) {
             return o;
         }
         let (tip, wart) = self.tip_and_wart(v, side);
-        self.inferred_opposite_given(v, i, tip, wart)
+        self.inferred_opposite_given(v, c & 7, tip, wart)
     }
 
     /// `c.o` of transversal corner `8v + i` (`i` in 0, 2, 4, 6) by the ring rules alone
@@ -517,24 +518,27 @@ pub trait LrLayout {
     }
 
     /// [`inferred_opposite`](Self::inferred_opposite) for a slot whose tip and WART flag
-    /// are known.
+    /// are known. Corners 0 and 6 face the edge from the tip to the slot's far vertex,
+    /// corners 2 and 4 the edge from `v` to the tip (`outer`: the slot's side and the
+    /// corner's position in it differ).
     #[inline(always)]
     fn inferred_opposite_given(&self, v: u32, i: u32, tip: u32, wart: bool) -> u32 {
+        let side = (i >> 2) as usize;
+        let outer = (i >> 1 ^ i >> 2) & 1 == 0;
         let p = self.ring_prev(v);
         // A canonical T2 (v.p, v, v.n): tip v.p; one of its corners faces ring edge (v.p, v).
         let t2 = !wart && tip == p;
-        match i {
-            0 if t2 && self.wart(p, LEFT) => 8 * p + 1,
-            0 => self.find_left(tip, self.far_given(v, wart)),
-            2 if t2 => self.across(p, LEFT),
-            2 => self.find_left(v, tip),
-            4 if t2 => self.across(p, RIGHT),
-            4 => self.find_right(tip, v),
-            6 if t2 && self.wart(p, RIGHT) => 8 * p + 5,
-            _ => self.find_right(self.far_given(v, wart), tip),
+        if outer {
+            if t2 && self.wart(p, side) {
+                return 8 * p + 1 + 4 * side as u32;
+            }
+            self.find(side, tip, self.far_given(v, wart))
+        } else if t2 {
+            self.across(p, side)
+        } else {
+            self.find(side, v, tip)
         }
     }
-
     /// Whether slot `(v, side)` holds a canonical triangle: it exists (a right slot may be a
     /// boundary's `NULL`) and is not a redundant T2 copy.
     #[inline(always)]
@@ -604,12 +608,14 @@ impl<T: LrLayout> CornerOps for T {
 
     #[inline(always)]
     fn next(&self, c: Corner) -> Corner {
-        Corner(if c.0 & 3 == 2 { c.0 - 2 } else { c.0 + 1 })
+        // Without a branch (the walks around a vertex take a next at every step): corners
+        // `4t + k`, `k` in 0..3, bit 1 set only on the last.
+        Corner(c.0 + 1 - 3 * (c.0 >> 1 & 1))
     }
 
     #[inline(always)]
     fn prev(&self, c: Corner) -> Corner {
-        Corner(if c.0 & 3 == 0 { c.0 + 2 } else { c.0 - 1 })
+        Corner(c.0 + 3 * (c.0 & 3 == 0) as u32 - 1)
     }
 
     #[inline(always)]
