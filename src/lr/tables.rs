@@ -591,13 +591,15 @@ impl<T: LrLayout> CornerOps for T {
         if c >= 8 * m_r {
             return Vertex(self.t0_vertex(c - c / 4 - 6 * m_r));
         }
-        let v = c >> 3;
-        Vertex(match c & 7 {
-            0 | 6 => v,
-            1 => self.tip(v, LEFT),
-            2 => self.far(v, LEFT),
-            4 => self.far(v, RIGHT),
-            _ => self.tip(v, RIGHT),
+        // Corners 1 and 5 are the tips, 0 and 6 the slot's vertex, 2 and 4 its far vertex:
+        // tested as values, not a `match` (a jump table, mispredicted along a walk).
+        let (v, side, k) = (c >> 3, (c >> 2 & 1) as usize, c & 3);
+        Vertex(if k == 1 {
+            self.tip(v, side)
+        } else if k == 2 * side as u32 {
+            v
+        } else {
+            self.far(v, side)
         })
     }
 
