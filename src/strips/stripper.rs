@@ -181,7 +181,9 @@ fn run(
 ) -> Strips {
     let n = tris.len() as u32;
     let mut out = Strips {
-        strips: Vec::with_capacity(n as usize + n as usize / 4),
+        // Strips take about 1.4 indices per triangle with their restarts (a realloc and a
+        // copy when they outgrow the capacity); pages never written cost nothing.
+        strips: Vec::with_capacity(2 * n as usize + 8),
         strip_order: Vec::with_capacity(n as usize),
         ..Strips::default()
     };
