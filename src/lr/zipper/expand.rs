@@ -4,7 +4,7 @@
 //! and T0 corners resolved once. The LR's operators answer as the Zipper's do, several times
 //! faster.
 
-use super::slots::Slot;
+use super::slots::{plane_bit, Slot};
 use super::tables::ZipperTables;
 use super::{BLOCK_SHIFT, DELTAS, FOUR, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PREVIOUS, RECORD_WORDS};
 use crate::lr::read_back::{push_slot, with_slots};
@@ -56,20 +56,23 @@ impl<W: Words> ZipperTables<W> {
         let mut chain = [LEFT, RIGHT].map(|side| self.chain_head(block, side));
         let fours = self.block_fours(&slot);
         let (mut x, mut r) = (self.before_block(block, 0), self.before_block(block, 1));
-        // Whether the next slot of (v, side)'s side has symbol 4: in the block's planes when
-        // `v.n` is `v + 1` in the block, else read as `next_is_t2` reads it.
-        let next_is_t2 = |slot: &Slot, v: u32, side: usize| {
-            let next = ring.next(self, v);
-            let symbol = match next == v + 1 && next < end {
-                true => slot.symbol_at(slot.bit + 2),
-                false => self.symbol(next, side),
-            };
-            symbol == PREVIOUS
+        // Whether the next slot of (v, side)'s side has symbol 4: for every slot at once from
+        // the block's planes where `v.n` is `v + 1` in the block (the slot two bits on),
+        // else read as `next_is_t2` reads it.
+        let [p0, p1, p2] = slot.p;
+        let inside = ring.inside_slots();
+        let next_t2 = (!p0 & !p1 & p2) >> 2 & inside;
+        let next_is_t2 = |_: &Slot, v: u32, side: usize| {
+            let bit = 2 * (v - first) + side as u32;
+            if plane_bit(inside, bit) != 0 {
+                return plane_bit(next_t2, bit) != 0;
+            }
+            self.symbol(ring.next(self, v), side) == PREVIOUS
         };
         for v in first..end {
             for side in [LEFT, RIGHT] {
                 slot.bit = 2 * (v - first) + side as u32;
-                let four = fours >> slot.bit & 1 != 0;
+                let four = plane_bit(fours, slot.bit) != 0;
                 let read = match slot.symbol_at(slot.bit) {
                     s if s < DELTAS || four => {
                         chain[side] = chain[side].wrapping_sub(if four { FOUR } else { s });
@@ -146,6 +149,18 @@ impl BlockRing {
         }
     }
 
+    /// The slots (bit `2i + side` of the block's vertex `first + i`) whose vertex's `v.n` is
+    /// `v + 1` in the block: not a ring end, nor the block's last vertex.
+    #[inline(always)]
+    fn inside_slots(&self) -> u128 {
+        let count = self.end - self.first;
+        // Vertices `i` with `i + 1 < count` and no ring end, one bit each.
+        let vertices = !self.lasts & u64::MAX.checked_shr(65 - count).unwrap_or(0);
+        let spread = spread_bits(vertices as u32) as u128
+            | (spread_bits((vertices >> 32) as u32) as u128) << 64;
+        spread | spread << 1
+    }
+
     /// `v.p`, as `ring_prev` gives it (`v` in the block).
     #[inline(always)]
     fn prev<W: Words>(&self, t: &ZipperTables<W>, v: u32) -> u32 {
@@ -163,4 +178,15 @@ impl BlockRing {
             false => self.next(t, self.next(t, v)),
         }
     }
+}
+
+/// The bits of `x` spread to the even bits of a 64-bit word (bit `i` to bit `2i`).
+#[inline(always)]
+fn spread_bits(x: u32) -> u64 {
+    let mut x = x as u64;
+    x = (x | x << 16) & 0x0000_FFFF_0000_FFFF;
+    x = (x | x << 8) & 0x00FF_00FF_00FF_00FF;
+    x = (x | x << 4) & 0x0F0F_0F0F_0F0F_0F0F;
+    x = (x | x << 2) & 0x3333_3333_3333_3333;
+    (x | x << 1) & 0x5555_5555_5555_5555
 }
