@@ -443,11 +443,11 @@ pub trait LrLayout {
         }
     }
 
-    /// A triangle of side `side` that holds half-edge `a -> b` (on the left: facing an edge
-    /// `b -> a` of a left triangle) or `b -> a` (on the right): the corner facing it, or
-    /// `NONE`. Such a triangle is the slot of `b` with tip `a`, or the slot of `a.p` (or of
-    /// `a.p.p`, a wart's) with tip `b`; the two sides mirror each other, so that one body
-    /// serves both with the side a value rather than a branch.
+    /// A triangle of side `side` holding the half-edge `b -> a` (left) or `a -> b` (right):
+    /// the corner facing that half-edge, or `NONE`. Such a triangle is the slot of `b` with
+    /// tip `a`, or the slot of `a.p` (or of `a.p.p`, a wart's) with tip `b`; the two sides'
+    /// rules mirror each other, so that one body serves both with the side as a value
+    /// rather than a branch.
     #[inline(always)]
     fn find(&self, side: usize, a: u32, b: u32) -> u32 {
         let m_r = self.ring_vertices();
