@@ -539,6 +539,7 @@ pub trait LrLayout {
             self.find(side, v, tip)
         }
     }
+
     /// Whether slot `(v, side)` holds a canonical triangle: it exists (a right slot may be a
     /// boundary's `NULL`) and is not a redundant T2 copy.
     #[inline(always)]

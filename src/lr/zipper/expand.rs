@@ -4,7 +4,7 @@
 //! and T0 corners resolved once. The LR's operators answer as the Zipper's do, several times
 //! faster.
 
-use super::slots::{plane_bit, Slot};
+use super::slots::plane_bit;
 use super::tables::ZipperTables;
 use super::{BLOCK_SHIFT, DELTAS, FOUR, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PREVIOUS, RECORD_WORDS};
 use crate::lr::read_back::{push_slot, with_slots};
@@ -62,7 +62,7 @@ impl<W: Words> ZipperTables<W> {
         let [p0, p1, p2] = slot.p;
         let inside = ring.inside_slots();
         let next_t2 = (!p0 & !p1 & p2) >> 2 & inside;
-        let next_is_t2 = |_: &Slot, v: u32, side: usize| {
+        let next_is_t2 = |v: u32, side: usize| {
             let bit = 2 * (v - first) + side as u32;
             if plane_bit(inside, bit) != 0 {
                 return plane_bit(next_t2, bit) != 0;
@@ -76,13 +76,13 @@ impl<W: Words> ZipperTables<W> {
                 let read = match slot.symbol_at(slot.bit) {
                     s if s < DELTAS || four => {
                         chain[side] = chain[side].wrapping_sub(if four { FOUR } else { s });
-                        let wart = self.wart_deltas && next_is_t2(&slot, v, side);
+                        let wart = self.wart_deltas && next_is_t2(v, side);
                         (chain[side], wart, false)
                     }
                     PREVIOUS => (ring.prev(self, v), false, false),
                     NEXT_NEXT_OR_NULL => {
                         // As `ring_rule_tip` gives it.
-                        let null = self.rule_5_is_null_given(side, || next_is_t2(&slot, v, side));
+                        let null = self.rule_5_is_null_given(side, || next_is_t2(v, side));
                         let tip = if null { NULL } else { ring.next_next(self, v) };
                         (tip, false, false)
                     }
@@ -96,7 +96,7 @@ impl<W: Words> ZipperTables<W> {
                         chain[side] = word & VALUE;
                         let wart = self.stored_wart_given(
                             word,
-                            || next_is_t2(&slot, v, side),
+                            || next_is_t2(v, side),
                             || ring.next_next(self, v),
                         );
                         (word & VALUE, wart, irregular)
