@@ -4,11 +4,13 @@
 //! and T0 corners resolved once. The LR's operators answer as the Zipper's do, several times
 //! faster.
 
-use super::slots::plane_bit;
+use super::slots::{below, LEFT_SLOTS};
 use super::tables::ZipperTables;
-use super::{BLOCK_SHIFT, DELTAS, FOUR, IRREGULAR_SLOT, NEXT_NEXT_OR_NULL, PREVIOUS, RECORD_WORDS};
+use super::{
+    BLOCK_SHIFT, BLOCK_SLOTS as SLOTS, DELTAS, EXCEPTION, IRREGULAR_SLOT, PREVIOUS, RECORD_WORDS,
+};
 use crate::lr::read_back::{push_slot, with_slots};
-use crate::lr::tables::{LrLayout, LrTables, LEFT, NULL, RIGHT, VALUE};
+use crate::lr::tables::{LrLayout, LrTables, IRREGULAR, LEFT, NULL, RIGHT, VALUE, WART};
 use crate::words::Words;
 
 impl<W: Words> ZipperTables<W> {
@@ -34,77 +36,116 @@ impl<W: Words> ZipperTables<W> {
     }
 
     /// [`each_slot`](Self::each_slot) for the slots of block `block` alone (of ring vertices
-    /// `64 block ..`, at most 64, below `m_r`). The ring steps the slots need (`v.n` for the
-    /// next slot's symbol, `v.p` and `v.n.n` for the ring rules' tips) are taken from the
-    /// block's ring ends, found once, instead of from the ring tables for every slot.
+    /// `64 block ..`, at most 64, below `m_r`), from [`decode_block`](Self::decode_block).
     pub(crate) fn each_slot_of_block(
         &self,
         block: usize,
         mut f: impl FnMut((u32, usize), (u32, bool, bool)),
     ) {
-        let m_r = self.m_r;
+        let mut words = [0u32; SLOTS];
+        let slots = self.decode_block(block, &mut words);
         let first = (block << BLOCK_SHIFT) as u32;
-        let end = m_r.min(first + (1 << BLOCK_SHIFT));
-        if first >= end {
-            return;
+        for (bit, &word) in words[..slots].iter().enumerate() {
+            let slot = (first + bit as u32 / 2, bit % 2);
+            f(
+                slot,
+                (word & VALUE, word & WART != 0, word & IRREGULAR != 0),
+            );
         }
-        let mut slot = self.block_planes(block);
+    }
+
+    /// Decodes the slots of block `block` into `out` (bit `2i + side` for the block's ring
+    /// vertex `64 block + i`), each as the standard LR's word: its tip (as `tip_and_wart`
+    /// gives it) with the `WART` and `IRREGULAR` flags; returns the number of slots. What
+    /// each slot reads is chosen from masks over the block's planes, not by a branch on its
+    /// symbol (taken at random: a symbol-by-symbol `match` mispredicts about every other
+    /// slot); the ring steps (`v.p`, `v.n.n`, the next slot's symbol) come from the block's
+    /// ring ends, found once, and only at a ring end or the block's last vertex from the
+    /// ring tables. Only the stored slots (exception words and records, a few percent)
+    /// branch.
+    pub(crate) fn decode_block(&self, block: usize, out: &mut [u32; SLOTS]) -> usize {
+        let first = (block << BLOCK_SHIFT) as u32;
+        let end = self.m_r.min(first + (1 << BLOCK_SHIFT));
+        if first >= end {
+            return 0;
+        }
+        let count = (end - first) as usize;
+        let slot = self.block_planes(block);
         let ring = BlockRing::new(self, first, end);
-        // Each side's chain value, and the next exception word and record, in slot order: a
-        // slot's tip as `tip_and_wart` gives it, without summing the chain from the last
-        // stored slot for every slot.
-        let mut chain = [LEFT, RIGHT].map(|side| self.chain_head(block, side));
-        let fours = self.block_fours(&slot);
-        let (mut x, mut r) = (self.before_block(block, 0), self.before_block(block, 1));
-        // Whether the next slot of (v, side)'s side has symbol 4: for every slot at once from
-        // the block's planes where `v.n` is `v + 1` in the block (the slot two bits on),
-        // else read as `next_is_t2` reads it.
         let [p0, p1, p2] = slot.p;
+        let fours = self.block_fours(&slot);
+        // Whether the next slot of each slot's side is a canonical T2 (symbol 4): from the
+        // planes two bits on where `v.n` is `v + 1` in the block, else from the tables.
         let inside = ring.inside_slots();
-        let next_t2 = (!p0 & !p1 & p2) >> 2 & inside;
-        let next_is_t2 = |v: u32, side: usize| {
-            let bit = 2 * (v - first) + side as u32;
-            if plane_bit(inside, bit) != 0 {
-                return plane_bit(next_t2, bit) != 0;
+        let mut next_t2 = (!p0 & !p1 & p2) >> 2 & inside;
+        let mut outside = below(2 * count) & !inside;
+        while outside != 0 {
+            let bit = outside.trailing_zeros();
+            outside &= outside - 1;
+            let (v, side) = (first + bit / 2, (bit % 2) as usize);
+            if self.symbol(ring.next(self, v), side) == PREVIOUS {
+                next_t2 |= 1 << bit;
             }
-            self.symbol(ring.next(self, v), side) == PREVIOUS
+        }
+        let before_t2 = if self.wart_deltas { next_t2 } else { 0 };
+        // Symbol 5 reads NULL on the right without right fours, but before a canonical T2
+        // under WART_DELTAS (`rule_5_is_null_given`).
+        let right_null = match self.four_sides & LEFT_SLOTS << RIGHT {
+            0 => LEFT_SLOTS << RIGHT,
+            _ => 0,
         };
-        for v in first..end {
-            for side in [LEFT, RIGHT] {
-                slot.bit = 2 * (v - first) + side as u32;
-                let four = plane_bit(fours, slot.bit) != 0;
-                let read = match slot.symbol_at(slot.bit) {
-                    s if s < DELTAS || four => {
-                        chain[side] = chain[side].wrapping_sub(if four { FOUR } else { s });
-                        let wart = self.wart_deltas && next_is_t2(v, side);
-                        (chain[side], wart, false)
-                    }
-                    PREVIOUS => (ring.prev(self, v), false, false),
-                    NEXT_NEXT_OR_NULL => {
-                        // As `ring_rule_tip` gives it.
-                        let null = self.rule_5_is_null_given(side, || next_is_t2(v, side));
-                        let tip = if null { NULL } else { ring.next_next(self, v) };
-                        (tip, false, false)
-                    }
-                    s => {
+        let null_5 = right_null & !before_t2;
+        let mut chain = [LEFT, RIGHT].map(|side| self.chain_head(block, side));
+        let (mut x, mut r) = (self.before_block(block, 0), self.before_block(block, 1));
+        // The planes' bits are taken slot by slot from 64-bit halves shifted one bit a slot
+        // (a variable shift of a `u128` takes several instructions).
+        for half in 0..2 {
+            let low = 32 * half;
+            let take = |mask: u128| (mask >> (64 * half)) as u64;
+            let (mut q0, mut q1, mut q2) = (take(p0), take(p1), take(p2));
+            let (mut q4, mut qt, mut qn) = (take(fours), take(before_t2), take(null_5));
+            for i in low..count.min(low + 32) {
+                let v = first + i as u32;
+                let prev = ring.prev(self, v);
+                // `v.n.n` is `v + 2` unless `v` or `v.n` ends its ring or is the block's last.
+                let next_next = match i + 1 < count && ring.lasts >> i & 3 == 0 {
+                    true => v + 2,
+                    false => ring.next_next(self, v),
+                };
+                for side in [LEFT, RIGHT] {
+                    let bit = 2 * i + side;
+                    let s = (q0 & 1 | (q1 & 1) << 1 | (q2 & 1) << 2) as u32;
+                    let (four, wart, null) = ((q4 & 1) as u32, (qt & 1) as u32, (qn & 1) as u32);
+                    (q0, q1, q2) = (q0 >> 1, q1 >> 1, q2 >> 1);
+                    (q4, qt, qn) = (q4 >> 1, qt >> 1, qn >> 1);
+                    if s >= EXCEPTION {
                         let irregular = s == IRREGULAR_SLOT;
                         let word = match irregular {
                             true => self.records.at(RECORD_WORDS * r),
                             false => self.exceptions.at(x),
                         };
                         (r, x) = (r + irregular as usize, x + !irregular as usize);
-                        chain[side] = word & VALUE;
-                        let wart = self.stored_wart_given(
-                            word,
-                            || next_is_t2(v, side),
-                            || ring.next_next(self, v),
-                        );
-                        (word & VALUE, wart, irregular)
+                        let tip = word & VALUE;
+                        chain[side] = tip;
+                        let next_is_t2 = (next_t2 >> bit) & 1 != 0;
+                        let wart = self.stored_wart_given(word, || next_is_t2, || next_next);
+                        out[bit] = word_of(tip, wart, irregular);
+                        continue;
                     }
-                };
-                f((v, side), read);
+                    // A delta (symbols 0–3, or a four), symbol 4 (`v.p`) or 5 (`v.n.n` or
+                    // NULL), each selected by a mask.
+                    let delta = mask_of((s < DELTAS) as u32 | four);
+                    // A four is symbol 5 read as the delta 4.
+                    let step = s - four;
+                    chain[side] = chain[side].wrapping_sub(step & delta);
+                    let rule_5 = select(mask_of(null), NULL, next_next);
+                    let ring_tip = select(mask_of(s & 1), rule_5, prev);
+                    let tip = select(delta, chain[side], ring_tip);
+                    out[bit] = tip | WART & delta & mask_of(wart);
+                }
             }
         }
+        2 * count
     }
 }
 
@@ -189,4 +230,22 @@ fn spread_bits(x: u32) -> u64 {
     x = (x | x << 4) & 0x0F0F_0F0F_0F0F_0F0F;
     x = (x | x << 2) & 0x3333_3333_3333_3333;
     (x | x << 1) & 0x5555_5555_5555_5555
+}
+
+/// All ones when `bit` (0 or 1) is 1, else 0: for [`select`].
+#[inline(always)]
+fn mask_of(bit: u32) -> u32 {
+    0u32.wrapping_sub(bit)
+}
+
+/// `a` where `mask` is all ones, `b` where it is 0, without a branch.
+#[inline(always)]
+fn select(mask: u32, a: u32, b: u32) -> u32 {
+    (a & mask) | (b & !mask)
+}
+
+/// A slot's word as the standard LR stores it: its tip with the `WART` and `IRREGULAR` flags.
+#[inline(always)]
+fn word_of(tip: u32, wart: bool, irregular: bool) -> u32 {
+    tip | if wart { WART } else { 0 } | if irregular { IRREGULAR } else { 0 }
 }

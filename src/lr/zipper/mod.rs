@@ -60,6 +60,8 @@ use crate::ids::{Triangle, Vertex};
 
 /// Ring vertices per block: `v >> BLOCK_SHIFT` is the block of `v`.
 pub const BLOCK_SHIFT: u32 = 6;
+/// Slots in a block: two per ring vertex.
+pub(crate) const BLOCK_SLOTS: usize = 2 << BLOCK_SHIFT;
 /// Symbols below this are chain deltas.
 pub const DELTAS: u32 = 4;
 /// Symbol: the tip is `v.p`.
