@@ -53,9 +53,8 @@ struct Misses {
     last: Cell<u32>,
 }
 
-/// One block's slots, decoded: each slot's word as the standard LR stores it (the tip, with
-/// the `WART` and `IRREGULAR` flags), so that a read is one word.
-type DecodedBlock = [Cell<u32>; BLOCK_SLOTS];
+/// The words of the blocks kept decoded, entry after entry.
+const CACHED_SLOTS: usize = CACHED_BLOCKS * BLOCK_SLOTS;
 
 /// The operators of a [`ZipperTables`] (through [`LrLayout`], hence
 /// [`CornerOps`](crate::ops::CornerOps)) with the slots of recently read blocks kept
@@ -72,7 +71,10 @@ pub struct ZipperCursor<'a, W: Words> {
     /// (next to the words, it took a second cache line per read).
     tags: Box<[Cell<usize>; CACHED_BLOCKS]>,
     misses: Box<[Misses; CACHED_BLOCKS]>,
-    words: Box<[DecodedBlock; CACHED_BLOCKS]>,
+    /// Each entry's block decoded: each slot's word as the standard LR stores it (the tip,
+    /// with the `WART` and `IRREGULAR` flags), so that a read is one word. Slot `(v, side)`
+    /// of a block held is at `2v + side` modulo the array's length.
+    words: Box<[Cell<u32>; CACHED_SLOTS]>,
 }
 
 impl<W: Words> ZipperTables<W> {
@@ -88,17 +90,17 @@ impl<W: Words> ZipperTables<W> {
                 reads: Cell::new(0),
                 last: Cell::new(0),
             }),
-            words: boxed(|| std::array::from_fn(|_| Cell::new(0))),
+            words: boxed(|| Cell::new(0)),
         }
     }
 }
 
-/// An array of [`CACHED_BLOCKS`] values made by `f`, built on the heap.
-fn boxed<T>(f: impl FnMut() -> T) -> Box<[T; CACHED_BLOCKS]> {
-    let all: Box<[T]> = std::iter::repeat_with(f).take(CACHED_BLOCKS).collect();
+/// An array of `N` values made by `f`, built on the heap.
+fn boxed<T, const N: usize>(f: impl FnMut() -> T) -> Box<[T; N]> {
+    let all: Box<[T]> = std::iter::repeat_with(f).take(N).collect();
     match all.try_into() {
         Ok(array) => array,
-        Err(_) => unreachable!("CACHED_BLOCKS values taken"),
+        Err(_) => unreachable!("N values taken"),
     }
 }
 
@@ -120,9 +122,9 @@ impl<W: Words> ZipperCursor<'_, W> {
         }
         let block = (v >> BLOCK_SHIFT) as usize;
         let entry = block % CACHED_BLOCKS;
-        let i = 2 * (v as usize & ((1 << BLOCK_SHIFT) - 1)) + side;
+        let i = (2 * v as usize + side) % CACHED_SLOTS;
         if self.tags[entry].get() == block {
-            return Some(self.words[entry][i].get());
+            return Some(self.words[i].get());
         }
         let now = self.clock.get().wrapping_add(1);
         self.clock.set(now);
@@ -142,10 +144,11 @@ impl<W: Words> ZipperCursor<'_, W> {
         self.tags[entry].set(block);
         let mut words = [0; BLOCK_SLOTS];
         self.tables.decode_block(block, &mut words);
-        for (cell, word) in self.words[entry].iter().zip(words) {
+        let held = &self.words[entry * BLOCK_SLOTS..(entry + 1) * BLOCK_SLOTS];
+        for (cell, word) in held.iter().zip(words) {
             cell.set(word);
         }
-        Some(self.words[entry][i].get())
+        Some(self.words[i].get())
     }
 }
 

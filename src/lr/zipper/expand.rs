@@ -95,57 +95,119 @@ impl<W: Words> ZipperTables<W> {
             _ => 0,
         };
         let null_5 = right_null & !before_t2;
-        let mut chain = [LEFT, RIGHT].map(|side| self.chain_head(block, side));
-        let (mut x, mut r) = (self.before_block(block, 0), self.before_block(block, 1));
-        // The planes' bits are taken slot by slot from 64-bit halves shifted one bit a slot
-        // (a variable shift of a `u128` takes several instructions).
+        let [mut left, mut right] = [LEFT, RIGHT].map(|side| self.chain_head(block, side));
+        let mut stored = (self.before_block(block, 0), self.before_block(block, 1));
+        // `v.p` is taken to be `v − 1` and `v.n.n` `v + 2`, then corrected below where a ring
+        // ends or the block does.
         for half in 0..2 {
-            let low = 32 * half;
-            let take = |mask: u128| (mask >> (64 * half)) as u64;
-            let (mut q0, mut q1, mut q2) = (take(p0), take(p1), take(p2));
-            let (mut q4, mut qt, mut qn) = (take(fours), take(before_t2), take(null_5));
-            for i in low..count.min(low + 32) {
+            let mut bits = HalfPlanes::new([p0, p1, p2, fours, before_t2, null_5], half);
+            for i in 32 * half..count.min(32 * half + 32) {
                 let v = first + i as u32;
-                let prev = ring.prev(self, v);
-                // `v.n.n` is `v + 2` unless `v` or `v.n` ends its ring or is the block's last.
-                let next_next = match i + 1 < count && ring.lasts >> i & 3 == 0 {
-                    true => v + 2,
-                    false => ring.next_next(self, v),
-                };
-                for side in [LEFT, RIGHT] {
-                    let bit = 2 * i + side;
-                    let s = (q0 & 1 | (q1 & 1) << 1 | (q2 & 1) << 2) as u32;
-                    let (four, wart, null) = ((q4 & 1) as u32, (qt & 1) as u32, (qn & 1) as u32);
-                    (q0, q1, q2) = (q0 >> 1, q1 >> 1, q2 >> 1);
-                    (q4, qt, qn) = (q4 >> 1, qt >> 1, qn >> 1);
-                    if s >= EXCEPTION {
-                        let irregular = s == IRREGULAR_SLOT;
-                        let word = match irregular {
-                            true => self.records.at(RECORD_WORDS * r),
-                            false => self.exceptions.at(x),
-                        };
-                        (r, x) = (r + irregular as usize, x + !irregular as usize);
-                        let tip = word & VALUE;
-                        chain[side] = tip;
-                        let next_is_t2 = (next_t2 >> bit) & 1 != 0;
-                        let wart = self.stored_wart_given(word, || next_is_t2, || next_next);
-                        out[bit] = word_of(tip, wart, irregular);
-                        continue;
-                    }
-                    // A delta (symbols 0–3, or a four), symbol 4 (`v.p`) or 5 (`v.n.n` or
-                    // NULL), each selected by a mask.
-                    let delta = mask_of((s < DELTAS) as u32 | four);
-                    // A four is symbol 5 read as the delta 4.
-                    let step = s - four;
-                    chain[side] = chain[side].wrapping_sub(step & delta);
-                    let rule_5 = select(mask_of(null), NULL, next_next);
-                    let ring_tip = select(mask_of(s & 1), rule_5, prev);
-                    let tip = select(delta, chain[side], ring_tip);
-                    out[bit] = tip | WART & delta & mask_of(wart);
+                let guess = (v.wrapping_sub(1), v + 2);
+                let t2 = |bit: usize| (next_t2 >> bit) & 1 != 0;
+                let next_next = || ring.next_next(self, v);
+                let bit = 2 * i;
+                let (slot, lists) = (bits.take(), &mut stored);
+                out[bit] = self.decode_slot(slot, guess, &mut left, lists, || t2(bit), next_next);
+                let (slot, lists) = (bits.take(), &mut stored);
+                out[bit + 1] =
+                    self.decode_slot(slot, guess, &mut right, lists, || t2(bit + 1), next_next);
+            }
+        }
+        // The vertices whose `v.p` or `v.n.n` may be another: a ring's first, a ring's last
+        // or the one before it, the block's last. Only symbols 4 and 5 read them (a four
+        // and a NULL five do not).
+        let steps =
+            below(count) as u64 & (ring.firsts | ring.lasts | ring.lasts >> 1) | 1 << (count - 1);
+        let (symbol_4, fives) = (!p0 & !p1 & p2, p0 & !p1 & p2 & !fours & !null_5);
+        let mut steps = steps;
+        while steps != 0 {
+            let i = steps.trailing_zeros() as usize;
+            steps &= steps - 1;
+            let v = first + i as u32;
+            for bit in [2 * i, 2 * i + 1] {
+                if symbol_4 >> bit & 1 != 0 {
+                    out[bit] = ring.prev(self, v);
+                } else if fives >> bit & 1 != 0 {
+                    out[bit] = ring.next_next(self, v);
                 }
             }
         }
         2 * count
+    }
+
+    /// One slot of [`decode_block`](Self::decode_block): its word, from its bits, `v.p` and
+    /// `v.n.n` as guessed (`ring_tips`; `exact_next_next` for a stored slot's implied wart),
+    /// its side's chain (updated) and the exception words and records taken before it in
+    /// the block (`stored`, updated).
+    #[inline(always)]
+    fn decode_slot(
+        &self,
+        bits: SlotBits,
+        (prev, next_next): (u32, u32),
+        chain: &mut u32,
+        (x, r): &mut (usize, usize),
+        next_is_t2: impl FnOnce() -> bool,
+        exact_next_next: impl FnOnce() -> u32,
+    ) -> u32 {
+        let s = bits.symbol;
+        if s >= EXCEPTION {
+            let irregular = s == IRREGULAR_SLOT;
+            let word = match irregular {
+                true => self.records.at(RECORD_WORDS * *r),
+                false => self.exceptions.at(*x),
+            };
+            (*r, *x) = (*r + irregular as usize, *x + !irregular as usize);
+            let tip = word & VALUE;
+            *chain = tip;
+            let wart = self.stored_wart_given(word, next_is_t2, exact_next_next);
+            return word_of(tip, wart, irregular);
+        }
+        // A delta (symbols 0–3, or a four), symbol 4 (`v.p`) or 5 (`v.n.n` or NULL), each
+        // selected by a mask.
+        let delta = mask_of((s < DELTAS) as u32 | bits.four);
+        // A four is symbol 5 read as the delta 4.
+        let step = s - bits.four;
+        *chain = chain.wrapping_sub(step & delta);
+        let rule_5 = select(mask_of(bits.null), NULL, next_next);
+        let ring_tip = select(mask_of(s & 1), rule_5, prev);
+        let tip = select(delta, *chain, ring_tip);
+        tip | WART & delta & mask_of(bits.wart)
+    }
+}
+
+/// What [`ZipperTables::decode_slot`] needs of a slot's bits in the block's masks.
+struct SlotBits {
+    symbol: u32,
+    /// Whether symbol 5 is a four here.
+    four: u32,
+    /// Whether a delta is a wart (`WART_DELTAS`, before a canonical T2).
+    wart: u32,
+    /// Whether symbol 5 reads NULL.
+    null: u32,
+}
+
+/// One 64-bit half of a block's masks (the three planes, fours, delta warts, NULL fives),
+/// taken a slot at a time: shifting each by one is cheaper than a variable shift of a
+/// `u128` for every slot.
+struct HalfPlanes([u64; 6]);
+
+impl HalfPlanes {
+    fn new(masks: [u128; 6], half: usize) -> HalfPlanes {
+        HalfPlanes(masks.map(|mask| (mask >> (64 * half)) as u64))
+    }
+
+    /// The next slot's bits.
+    #[inline(always)]
+    fn take(&mut self) -> SlotBits {
+        let [p0, p1, p2, four, wart, null] = self.0.map(|q| (q & 1) as u32);
+        self.0 = self.0.map(|q| q >> 1);
+        SlotBits {
+            symbol: p0 | p1 << 1 | p2 << 2,
+            four,
+            wart,
+            null,
+        }
     }
 }
 
