@@ -8,12 +8,12 @@
 //! and of the ring rows beside it. [`ZipperCursor`] decodes a block's 128 slots in one pass
 //! (`ZipperTables::decode_block`, which follows each chain slot by slot instead of summing
 //! it from the block's start for every slot, and picks each slot's reading by masks over
-//! the block's planes, about 100 instructions a slot) once a loop has stayed in it: at the
+//! the block's planes, about 45 instructions a slot) once a loop has stayed in it: at the
 //! [`DECODE_AFTER`]th read in a row through its cache entry, each within [`READ_GAP`] reads
 //! of the one before; it keeps the last [`CACHED_BLOCKS`] blocks so, and a slot read is then
 //! one word, after a look at a small array of tags. Until then a read is answered from the
 //! tables, as they answer it: a walk that passes through blocks (a contour reads some ten
-//! slots of a block and moves on) pays no decoding, which costs about as much as 50 reads
+//! slots of a block and moves on) pays no decoding, which costs about as much as 30 reads
 //! from the tables. Each operator
 //! still reads a bounded number of words (the blocks it decodes on top of the tables'
 //! reads), so it stays constant time on the loaded bytes, and on a valid file it answers
@@ -29,11 +29,12 @@ use std::cell::Cell;
 /// vertices (about 130 KiB) hold the rows a fan reaches on the scanned meshes.
 pub const CACHED_BLOCKS: usize = 256;
 
-/// A block is decoded at its 32nd read in a row through its cache entry (measured on the
-/// scanned meshes: the valence and normal loops 0–4% slower than decoding at the second read,
-/// contour walks 2.2–3.1× faster, as fast as on the tables; with the decode by masks, at the
-/// 8th read valence is 5–6% faster on bunny00 and armadillo, contour 1.5–2× slower).
-pub const DECODE_AFTER: u32 = 32;
+/// A block is decoded at its 24th read in a row through its cache entry (measured on the
+/// scanned meshes bunny00 and armadillo, with the decode by masks and slot codes, against
+/// the 32nd and 16th: valence 3–5% faster than at the 32nd and 2–4% slower than at the 16th,
+/// contour walks 10–20% slower than at the 32nd and 10–15% faster than at the 16th; at the
+/// 32nd, before the decode by masks, they were as fast as on the tables alone).
+pub const DECODE_AFTER: u32 = 24;
 
 /// Reads "in a row" are at most this many reads from the tables apart (over all blocks): a
 /// walk that comes back to a block later starts counting again.

@@ -99,20 +99,18 @@ impl<W: Words> ZipperTables<W> {
         let mut stored = (self.before_block(block, 0), self.before_block(block, 1));
         // `v.p` is taken to be `v − 1` and `v.n.n` `v + 2`, then corrected below where a ring
         // ends or the block does.
-        for half in 0..2 {
-            let mut bits = HalfPlanes::new([p0, p1, p2, fours, before_t2, null_5], half);
-            for i in 32 * half..count.min(32 * half + 32) {
-                let v = first + i as u32;
-                let guess = (v.wrapping_sub(1), v + 2);
-                let t2 = |bit: usize| (next_t2 >> bit) & 1 != 0;
-                let next_next = || ring.next_next(self, v);
-                let bit = 2 * i;
-                let (slot, lists) = (bits.take(), &mut stored);
-                out[bit] = self.decode_slot(slot, guess, &mut left, lists, || t2(bit), next_next);
-                let (slot, lists) = (bits.take(), &mut stored);
-                out[bit + 1] =
-                    self.decode_slot(slot, guess, &mut right, lists, || t2(bit + 1), next_next);
-            }
+        let codes = slot_codes([p0, p1, p2, fours, before_t2, null_5]);
+        for i in 0..count {
+            let v = first + i as u32;
+            let guess = (v.wrapping_sub(1), v + 2);
+            let t2 = |bit: usize| (next_t2 >> bit) & 1 != 0;
+            let next_next = || ring.next_next(self, v);
+            let bit = 2 * i;
+            let (slot, lists) = (SlotBits::of(codes[bit]), &mut stored);
+            out[bit] = self.decode_slot(slot, guess, &mut left, lists, || t2(bit), next_next);
+            let (slot, lists) = (SlotBits::of(codes[bit + 1]), &mut stored);
+            out[bit + 1] =
+                self.decode_slot(slot, guess, &mut right, lists, || t2(bit + 1), next_next);
         }
         // The vertices whose `v.p` or `v.n.n` may be another: a ring's first, a ring's last
         // or the one before it, the block's last. Only symbols 4 and 5 read them (a four
@@ -187,28 +185,49 @@ struct SlotBits {
     null: u32,
 }
 
-/// One 64-bit half of a block's masks (the three planes, fours, delta warts, NULL fives),
-/// taken a slot at a time: shifting each by one is cheaper than a variable shift of a
-/// `u128` for every slot.
-struct HalfPlanes([u64; 6]);
-
-impl HalfPlanes {
-    fn new(masks: [u128; 6], half: usize) -> HalfPlanes {
-        HalfPlanes(masks.map(|mask| (mask >> (64 * half)) as u64))
-    }
-
-    /// The next slot's bits.
+impl SlotBits {
+    /// From a slot's code (see [`slot_codes`]).
     #[inline(always)]
-    fn take(&mut self) -> SlotBits {
-        let [p0, p1, p2, four, wart, null] = self.0.map(|q| (q & 1) as u32);
-        self.0 = self.0.map(|q| q >> 1);
+    fn of(code: u8) -> SlotBits {
+        let code = code as u32;
         SlotBits {
-            symbol: p0 | p1 << 1 | p2 << 2,
-            four,
-            wart,
-            null,
+            symbol: code & 7,
+            four: code >> 3 & 1,
+            wart: code >> 4 & 1,
+            null: code >> 5 & 1,
         }
     }
+}
+
+/// Byte `i` of `SPREAD[b]` is bit `i` of `b`.
+const SPREAD: [u64; 256] = {
+    let mut table = [0; 256];
+    let mut b = 0;
+    while b < 256 {
+        let mut i = 0;
+        while i < 8 {
+            table[b] |= ((b as u64 >> i) & 1) << (8 * i);
+            i += 1;
+        }
+        b += 1;
+    }
+    table
+};
+
+/// A byte per slot of a block whose bit `k` is the slot's bit in `masks[k]` (the three
+/// planes, fours, delta warts, NULL fives): eight slots at a time by table lookups, so that
+/// the slot loop reads one byte instead of shifting six masks.
+#[inline(always)]
+fn slot_codes(masks: [u128; 6]) -> [u8; SLOTS] {
+    let mut codes = [0; SLOTS];
+    for (k, eight) in codes.chunks_exact_mut(8).enumerate() {
+        let mut word = 0;
+        for (j, mask) in masks.iter().enumerate() {
+            word |= SPREAD[(mask >> (8 * k)) as u8 as usize] << j;
+        }
+        eight.copy_from_slice(&word.to_le_bytes());
+    }
+    codes
 }
 
 /// The ring steps of the vertices of one block, `first .. end`: which of them end their
