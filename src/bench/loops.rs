@@ -84,6 +84,17 @@ impl<'a> Fig10<'a> {
     /// The loops on `mesh`, `positions` indexed by its vertex ids; the contour walks' starts
     /// are found now.
     pub fn new<M: CornerOps>(mesh: &'a M, positions: &'a [[f32; 3]]) -> Fig10<'a> {
+        Fig10::with_reset(mesh, positions, || {})
+    }
+
+    /// [`Fig10::new`] for a representation with state that a run leaves behind (the Zipper
+    /// cursor's decoded blocks): `reset` runs before each timed run, untimed, so that every
+    /// run starts as the first.
+    pub fn with_reset<M: CornerOps>(
+        mesh: &'a M,
+        positions: &'a [[f32; 3]],
+        reset: impl Fn() + 'a,
+    ) -> Fig10<'a> {
         let starts = contour_starts(mesh, positions);
         let walk = move || {
             starts
@@ -95,6 +106,7 @@ impl<'a> Fig10<'a> {
         let vertices = mesh.vertices().count();
         let walked = walk();
         let once = move |i: usize| {
+            reset();
             let start = Instant::now();
             match i {
                 0 => {

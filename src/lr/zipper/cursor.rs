@@ -111,6 +111,21 @@ impl<W: Words> ZipperCursor<'_, W> {
         self.tables
     }
 
+    /// Forgets every block decoded or counted, as a new cursor: so that a benchmark that
+    /// runs a loop several times times each run from an empty cache, as a single loop runs
+    /// (the blocks a run leaves decoded would otherwise answer the next run's first reads).
+    pub fn clear(&self) {
+        self.clock.set(0);
+        for tag in self.tags.iter() {
+            tag.set(usize::MAX);
+        }
+        for misses in self.misses.iter() {
+            misses.block.set(usize::MAX);
+            misses.reads.set(0);
+            misses.last.set(0);
+        }
+    }
+
     /// The word of slot `(v, side)` (its tip with the `WART` and `IRREGULAR` flags) when its
     /// block is decoded in the cache, decoding it first at the block's [`DECODE_AFTER`]th
     /// read in a row through its entry; otherwise `None`, and the caller reads the field from

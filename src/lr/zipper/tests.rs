@@ -214,3 +214,35 @@ fn read_back_as_standard_tables_the_answers_agree() {
         assert_eq!(lr.triangles().count(), z.tables().triangles().count());
     }
 }
+
+/// A cursor answers a slot of a block it holds decoded without reading the tables, and after
+/// `clear` reads them again, as a new cursor (the benchmarks clear it between runs).
+#[test]
+fn a_cleared_cursor_reads_the_tables_again() {
+    use crate::lr::tables::{LrLayout, LEFT};
+    let ct = CornerTable::from_mesh(&generate::irregular_torus(5_000, 1)).unwrap();
+    let z = Zipper::build(&ct, &LrOptions::default()).unwrap();
+    let reads = Cell::new(0);
+    let t = counting(z.tables(), &reads);
+    let cursor = t.cursor();
+    let valences: u32 = cursor
+        .vertices()
+        .map(|v| crate::ops::valence(&cursor, v))
+        .sum();
+    let expected: u32 = ct.vertices().map(|v| crate::ops::valence(&ct, v)).sum();
+    assert_eq!(valences, expected);
+    // A vertex whose block the loop left decoded: read without the tables.
+    let read_free = |v: u32| {
+        reads.set(0);
+        let tip = cursor.tip(v, LEFT);
+        (reads.get() == 0).then_some((v, tip))
+    };
+    let (v, tip) = (0..t.ring_vertices())
+        .find_map(read_free)
+        .expect("a decoded block");
+    assert_eq!(tip, t.tip(v, LEFT));
+    cursor.clear();
+    reads.set(0);
+    assert_eq!(cursor.tip(v, LEFT), tip);
+    assert!(reads.get() > 0, "a cleared cursor reads the tables");
+}
