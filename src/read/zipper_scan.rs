@@ -9,8 +9,8 @@
 
 use super::lr_rules::{slot_flag_masks, SlotBits};
 use crate::lr::zipper::{
-    below, implied_wart, Slot, BLOCK_SHIFT, DELTAS, FOUR, LEFT_SLOTS, PREVIOUS, RECORD_WORDS,
-    STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
+    below, implied_wart, slot_bytes, Slot, BLOCK_SHIFT, DELTAS, FOUR, LEFT_SLOTS, PREVIOUS,
+    RECORD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
 };
 use crate::lr::{LrLayout, ZipperTables, VALUE, WART};
 use crate::words::BitsSet;
@@ -18,33 +18,9 @@ use crate::words::{LeWords, Words};
 
 type Tables<'a> = ZipperTables<LeWords<'a>>;
 
-/// The low bit of each of 8 bytes set as the bits of the index: spreads a byte of a symbol
-/// plane over the bytes of 8 symbols.
-const SPREAD: [u64; 256] = {
-    let mut table = [0u64; 256];
-    let mut i = 0;
-    while i < 256 {
-        let mut k = 0;
-        while k < 8 {
-            table[i] |= ((i as u64 >> k) & 1) << (8 * k);
-            k += 1;
-        }
-        i += 1;
-    }
-    table
-};
-
-/// A block's 128 symbols as bytes, 8 at a time through [`SPREAD`] (a 128-bit shift by a
-/// variable amount per slot cost more than the rest of a loop over the slots).
+/// A block's 128 symbols as bytes ([`slot_bytes`] of its planes).
 pub(super) fn block_symbols(slot: &Slot) -> [u8; 128] {
-    let planes = slot.p.map(u128::to_le_bytes);
-    let mut symbols = [0u8; 128];
-    for (i, eight) in symbols.chunks_exact_mut(8).enumerate() {
-        let spread = planes.map(|plane| SPREAD[plane[i] as usize]);
-        let bytes = spread[0] | spread[1] << 1 | spread[2] << 2;
-        eight.copy_from_slice(&bytes.to_le_bytes());
-    }
-    symbols
+    slot_bytes(slot.p)
 }
 
 /// The set bits of a `u128`, lowest first.

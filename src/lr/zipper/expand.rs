@@ -4,7 +4,7 @@
 //! and T0 corners resolved once. The LR's operators answer as the Zipper's do, several times
 //! faster.
 
-use super::slots::{below, LEFT_SLOTS};
+use super::slots::{below, slot_bytes, LEFT_SLOTS};
 use super::tables::ZipperTables;
 use super::{
     BLOCK_SHIFT, BLOCK_SLOTS as SLOTS, DELTAS, EXCEPTION, IRREGULAR_SLOT, PREVIOUS, RECORD_WORDS,
@@ -99,7 +99,7 @@ impl<W: Words> ZipperTables<W> {
         let mut stored = (self.before_block(block, 0), self.before_block(block, 1));
         // `v.p` is taken to be `v − 1` and `v.n.n` `v + 2`, then corrected below where a ring
         // ends or the block does.
-        let codes = slot_codes([p0, p1, p2, fours, before_t2, null_5]);
+        let codes = slot_bytes([p0, p1, p2, fours, before_t2, null_5]);
         for i in 0..count {
             let v = first + i as u32;
             let guess = (v.wrapping_sub(1), v + 2);
@@ -186,7 +186,8 @@ struct SlotBits {
 }
 
 impl SlotBits {
-    /// From a slot's code (see [`slot_codes`]).
+    /// From a slot's byte of [`slot_bytes`] over the block's planes, fours, delta warts and
+    /// NULL fives.
     #[inline(always)]
     fn of(code: u8) -> SlotBits {
         let code = code as u32;
@@ -197,37 +198,6 @@ impl SlotBits {
             null: code >> 5 & 1,
         }
     }
-}
-
-/// Byte `i` of `SPREAD[b]` is bit `i` of `b`.
-const SPREAD: [u64; 256] = {
-    let mut table = [0; 256];
-    let mut b = 0;
-    while b < 256 {
-        let mut i = 0;
-        while i < 8 {
-            table[b] |= ((b as u64 >> i) & 1) << (8 * i);
-            i += 1;
-        }
-        b += 1;
-    }
-    table
-};
-
-/// A byte per slot of a block whose bit `k` is the slot's bit in `masks[k]` (the three
-/// planes, fours, delta warts, NULL fives): eight slots at a time by table lookups, so that
-/// the slot loop reads one byte instead of shifting six masks.
-#[inline(always)]
-fn slot_codes(masks: [u128; 6]) -> [u8; SLOTS] {
-    let mut codes = [0; SLOTS];
-    for (k, eight) in codes.chunks_exact_mut(8).enumerate() {
-        let mut word = 0;
-        for (j, mask) in masks.iter().enumerate() {
-            word |= SPREAD[(mask >> (8 * k)) as u8 as usize] << j;
-        }
-        eight.copy_from_slice(&word.to_le_bytes());
-    }
-    codes
 }
 
 /// The ring steps of the vertices of one block, `first .. end`: which of them end their

@@ -50,7 +50,7 @@ pub use packed::{
 };
 pub use slots::plane_array_words;
 pub(crate) use slots::Slot;
-pub(crate) use slots::{below, four_sides, implied_wart, LEFT_SLOTS};
+pub(crate) use slots::{below, four_sides, implied_wart, slot_bytes, LEFT_SLOTS};
 pub use tables::ZipperTables;
 
 use super::{InputMaps, Lr, LrCounts, LrOptions};

@@ -127,6 +127,39 @@ pub(crate) fn last_vertex_bits(m_r: u32, block: usize) -> u128 {
     }
 }
 
+/// Byte `i` of `SPREAD[b]` is bit `i` of `b`.
+const SPREAD: [u64; 256] = {
+    let mut table = [0; 256];
+    let mut b = 0;
+    while b < 256 {
+        let mut i = 0;
+        while i < 8 {
+            table[b] |= ((b as u64 >> i) & 1) << (8 * i);
+            i += 1;
+        }
+        b += 1;
+    }
+    table
+};
+
+/// A byte per slot of a block whose bit `k` is the slot's bit in `masks[k]` (a block's
+/// symbol planes, and the masks a decoder adds to them), eight slots at a time by table
+/// lookups: a shift of a `u128` by a variable amount per slot costs more than the rest of a
+/// loop over the slots.
+#[inline(always)]
+pub(crate) fn slot_bytes<const N: usize>(masks: [u128; N]) -> [u8; 128] {
+    let bytes = masks.map(u128::to_le_bytes);
+    let mut slots = [0; 128];
+    for (k, eight) in slots.chunks_exact_mut(8).enumerate() {
+        let mut word = 0;
+        for (j, mask) in bytes.iter().enumerate() {
+            word |= SPREAD[mask[k] as usize] << j;
+        }
+        eight.copy_from_slice(&word.to_le_bytes());
+    }
+    slots
+}
+
 /// The bits below bit `k` (all for `k` = 128).
 #[inline]
 pub(crate) fn below(k: usize) -> u128 {
