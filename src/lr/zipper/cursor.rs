@@ -6,18 +6,14 @@
 //! most of an operator's time (the valence loop reads some 20 slots per vertex). The
 //! operators of a loop keep returning to the same few blocks: those of the vertex at hand
 //! and of the ring rows beside it. [`ZipperCursor`] decodes a block's 128 slots in one pass
-//! (`ZipperTables::decode_block`, which follows each chain slot by slot instead of summing
-//! it from the block's start for every slot, and picks each slot's reading by masks over
-//! the block's planes, about 45 instructions a slot) once a loop has stayed in it: at the
-//! [`DECODE_AFTER`]th read in a row through its cache entry, each within [`READ_GAP`] reads
-//! of the one before; it keeps the last [`CACHED_BLOCKS`] blocks so, and a slot read is then
-//! one word, after a look at a small array of tags. Until then a read is answered from the
-//! tables, as they answer it: a walk that passes through blocks (a contour reads some ten
-//! slots of a block and moves on) pays no decoding, which costs about as much as 30 reads
-//! from the tables. Each operator
-//! still reads a bounded number of words (the blocks it decodes on top of the tables'
-//! reads), so it stays constant time on the loaded bytes, and on a valid file it answers
-//! exactly as the tables do (on a file that is only well formed, both answer in range).
+//! (`ZipperTables::decode_block`: each side's chain followed slot by slot, then every slot's
+//! word chosen by masks in a loop the compiler vectorizes, about 45 instructions a slot in
+//! all, as much as some 20 reads from the tables) the first time it reads one of them, and
+//! keeps the last [`CACHED_BLOCKS`] blocks so: a slot read is then one word, after a look at
+//! a small array of tags. Each operator still reads a bounded number of words (the blocks it
+//! decodes on top of the tables' reads), so it stays constant time on the loaded bytes, and
+//! on a valid file it answers exactly as the tables do (on a file that is only well formed,
+//! both answer in range).
 
 use super::tables::ZipperTables;
 use super::{BLOCK_SHIFT, BLOCK_SLOTS};
@@ -29,31 +25,6 @@ use std::cell::Cell;
 /// vertices (about 130 KiB) hold the rows a fan reaches on the scanned meshes.
 pub const CACHED_BLOCKS: usize = 256;
 
-/// A block is decoded at its 24th read in a row through its cache entry (measured on the
-/// scanned meshes bunny00 and armadillo, with the decode by masks and slot codes, against
-/// the 32nd and 16th: valence 3–5% faster than at the 32nd and 2–4% slower than at the 16th,
-/// contour walks 10–20% slower than at the 32nd and 10–15% faster than at the 16th; at the
-/// 32nd, before the decode by masks, they were as fast as on the tables alone).
-pub const DECODE_AFTER: u32 = 24;
-
-/// Reads "in a row" are at most this many reads from the tables apart (over all blocks): a
-/// walk that comes back to a block later starts counting again.
-pub const READ_GAP: u32 = 64;
-
-/// What a cache entry knows of the blocks read through it from the tables (not decoded): a
-/// block is decoded at its [`DECODE_AFTER`]th read in a row, so that a walk that reads a
-/// few slots here and a few there neither pays a block's decoding for each nor evicts the
-/// blocks a loop keeps returning to.
-#[derive(Debug)]
-struct Misses {
-    /// The block last read so, or `usize::MAX` for none yet.
-    block: Cell<usize>,
-    /// Its reads in a row.
-    reads: Cell<u32>,
-    /// The cursor's clock at the last of them.
-    last: Cell<u32>,
-}
-
 /// The words of the blocks kept decoded, entry after entry.
 const CACHED_SLOTS: usize = CACHED_BLOCKS * BLOCK_SLOTS;
 
@@ -64,14 +35,15 @@ const CACHED_SLOTS: usize = CACHED_BLOCKS * BLOCK_SLOTS;
 #[derive(Debug)]
 pub struct ZipperCursor<'a, W: Words> {
     tables: &'a ZipperTables<W>,
-    m_r: u32,
-    /// Reads answered from the tables so far (wrapping): the clock of [`READ_GAP`].
-    clock: Cell<u32>,
+    /// The blocks of 64 ring vertices all below `m_r`, the ones decoded: a vertex past the
+    /// ring (which only a file that is not semantically valid asks for) and the ring's last
+    /// block when partial are read from the tables, so that a read finds a word by its
+    /// block's tag alone.
+    whole_blocks: usize,
     /// The block each entry holds decoded, `usize::MAX` for none: apart from the words, so
     /// that the check before every read looks at a small array that stays in the L1 cache
     /// (next to the words, it took a second cache line per read).
     tags: Box<[Cell<usize>; CACHED_BLOCKS]>,
-    misses: Box<[Misses; CACHED_BLOCKS]>,
     /// Each entry's block decoded: each slot's word as the standard LR stores it (the tip,
     /// with the `WART` and `IRREGULAR` flags), so that a read is one word. Slot `(v, side)`
     /// of a block held is at `2v + side` modulo the array's length.
@@ -83,14 +55,8 @@ impl<W: Words> ZipperTables<W> {
     pub fn cursor(&self) -> ZipperCursor<'_, W> {
         ZipperCursor {
             tables: self,
-            m_r: self.ring_vertices(),
-            clock: Cell::new(0),
+            whole_blocks: (self.ring_vertices() >> BLOCK_SHIFT) as usize,
             tags: boxed(|| Cell::new(usize::MAX)),
-            misses: boxed(|| Misses {
-                block: Cell::new(usize::MAX),
-                reads: Cell::new(0),
-                last: Cell::new(0),
-            }),
             words: boxed(|| Cell::new(0)),
         }
     }
@@ -111,52 +77,36 @@ impl<W: Words> ZipperCursor<'_, W> {
         self.tables
     }
 
-    /// Forgets every block decoded or counted, as a new cursor: so that a benchmark that
-    /// runs a loop several times times each run from an empty cache, as a single loop runs
-    /// (the blocks a run leaves decoded would otherwise answer the next run's first reads).
+    /// Forgets every block decoded, as a new cursor: so that a benchmark that runs a loop
+    /// several times times each run from an empty cache, as a single loop runs (the blocks
+    /// a run leaves decoded would otherwise answer the next run's first reads).
     pub fn clear(&self) {
-        self.clock.set(0);
         for tag in self.tags.iter() {
             tag.set(usize::MAX);
         }
-        for misses in self.misses.iter() {
-            misses.block.set(usize::MAX);
-            misses.reads.set(0);
-            misses.last.set(0);
-        }
     }
 
-    /// The word of slot `(v, side)` (its tip with the `WART` and `IRREGULAR` flags) when its
-    /// block is decoded in the cache, decoding it first at the block's [`DECODE_AFTER`]th
-    /// read in a row through its entry; otherwise `None`, and the caller reads the field from
-    /// the tables as they read it alone. A vertex past the ring (which only a file that is
-    /// not semantically valid asks for) is always read from the tables.
+    /// The word of slot `(v, side)` (its tip with the `WART` and `IRREGULAR` flags) from its
+    /// block decoded in the cache, decoding the block first if its entry holds another;
+    /// `None` for a slot of a block that is not whole (see `whole_blocks`), whose fields the
+    /// caller reads from the tables as they read them alone.
     #[inline(always)]
     fn cached(&self, v: u32, side: usize) -> Option<u32> {
-        if v >= self.m_r {
-            return None;
-        }
         let block = (v >> BLOCK_SHIFT) as usize;
         let entry = block % CACHED_BLOCKS;
-        let i = (2 * v as usize + side) % CACHED_SLOTS;
-        if self.tags[entry].get() == block {
-            return Some(self.words[i].get());
+        if self.tags[entry].get() != block {
+            if block >= self.whole_blocks {
+                return None;
+            }
+            self.decode(block, entry);
         }
-        let now = self.clock.get().wrapping_add(1);
-        self.clock.set(now);
-        let misses = &self.misses[entry];
-        let gap = now.wrapping_sub(misses.last.get());
-        misses.last.set(now);
-        if misses.block.get() != block || gap > READ_GAP {
-            misses.block.set(block);
-            misses.reads.set(1);
-            return None;
-        }
-        let reads = misses.reads.get() + 1;
-        misses.reads.set(reads);
-        if reads < DECODE_AFTER {
-            return None;
-        }
+        Some(self.words[(2 * v as usize + side) % CACHED_SLOTS].get())
+    }
+
+    /// Decodes whole block `block` into cache entry `entry`. Out of line: the reads that
+    /// find their block held stay short.
+    #[inline(never)]
+    fn decode(&self, block: usize, entry: usize) {
         self.tags[entry].set(block);
         let mut words = [0; BLOCK_SLOTS];
         self.tables.decode_block(block, &mut words);
@@ -164,7 +114,6 @@ impl<W: Words> ZipperCursor<'_, W> {
         for (cell, word) in held.iter().zip(words) {
             cell.set(word);
         }
-        Some(self.words[i].get())
     }
 }
 

@@ -6,9 +6,7 @@
 
 use super::slots::{below, slot_bytes, LEFT_SLOTS};
 use super::tables::ZipperTables;
-use super::{
-    BLOCK_SHIFT, BLOCK_SLOTS as SLOTS, DELTAS, EXCEPTION, IRREGULAR_SLOT, PREVIOUS, RECORD_WORDS,
-};
+use super::{BLOCK_SHIFT, BLOCK_SLOTS as SLOTS, DELTAS, EXCEPTION, PREVIOUS, RECORD_WORDS};
 use crate::lr::read_back::{push_slot, with_slots};
 use crate::lr::tables::{LrLayout, LrTables, IRREGULAR, LEFT, NULL, RIGHT, VALUE, WART};
 use crate::words::Words;
@@ -56,13 +54,15 @@ impl<W: Words> ZipperTables<W> {
 
     /// Decodes the slots of block `block` into `out` (bit `2i + side` for the block's ring
     /// vertex `64 block + i`), each as the standard LR's word: its tip (as `tip_and_wart`
-    /// gives it) with the `WART` and `IRREGULAR` flags; returns the number of slots. What
-    /// each slot reads is chosen from masks over the block's planes, not by a branch on its
-    /// symbol (taken at random: a symbol-by-symbol `match` mispredicts about every other
-    /// slot); the ring steps (`v.p`, `v.n.n`, the next slot's symbol) come from the block's
-    /// ring ends, found once, and only at a ring end or the block's last vertex from the
-    /// ring tables. Only the stored slots (exception words and records, a few percent)
-    /// branch.
+    /// gives it) with the `WART` and `IRREGULAR` flags; returns the number of slots (the
+    /// words past them are unspecified). No branch on a slot's symbol (taken at random: a
+    /// symbol-by-symbol `match` mispredicts about every other slot): each side's chain is a
+    /// scan over the slots' bytes of codes, and every word is then chosen from its code,
+    /// its chain and the guessed ring steps by masks, in a loop over the whole block that
+    /// the compiler vectorizes. The ring steps (`v.p`, `v.n.n`, the next slot's symbol)
+    /// come from the block's ring ends, found once, and only at a ring end or the block's
+    /// last vertex from the ring tables. Only the stored slots (exception words and
+    /// records, a few percent) branch.
     pub(crate) fn decode_block(&self, block: usize, out: &mut [u32; SLOTS]) -> usize {
         let first = (block << BLOCK_SHIFT) as u32;
         let end = self.m_r.min(first + (1 << BLOCK_SHIFT));
@@ -95,22 +95,55 @@ impl<W: Words> ZipperTables<W> {
             _ => 0,
         };
         let null_5 = right_null & !before_t2;
-        let [mut left, mut right] = [LEFT, RIGHT].map(|side| self.chain_head(block, side));
-        let mut stored = (self.before_block(block, 0), self.before_block(block, 1));
-        // `v.p` is taken to be `v − 1` and `v.n.n` `v + 2`, then corrected below where a ring
-        // ends or the block does.
         let codes = slot_bytes([p0, p1, p2, fours, before_t2, null_5]);
+        // The stored slots' words (exception words and records in slot order): they reset
+        // their side's chain.
+        let stored = p1 & p2 & below(2 * count);
+        let mut stored_words = [0u32; SLOTS];
+        let (mut x, mut r) = (self.before_block(block, 0), self.before_block(block, 1));
+        let mut rest = stored;
+        while rest != 0 {
+            let bit = rest.trailing_zeros() as usize;
+            rest &= rest - 1;
+            stored_words[bit] = match p0 >> bit & 1 != 0 {
+                true => {
+                    r += 1;
+                    self.records.at(RECORD_WORDS * (r - 1))
+                }
+                false => {
+                    x += 1;
+                    self.exceptions.at(x - 1)
+                }
+            };
+        }
+        // Each side's chain after each slot: a scan without a branch.
+        let mut chains = [0u32; SLOTS];
+        let [mut left, mut right] = [LEFT, RIGHT].map(|side| self.chain_head(block, side));
         for i in 0..count {
-            let v = first + i as u32;
-            let guess = (v.wrapping_sub(1), v + 2);
-            let t2 = |bit: usize| (next_t2 >> bit) & 1 != 0;
-            let next_next = || ring.next_next(self, v);
             let bit = 2 * i;
-            let (slot, lists) = (SlotBits::of(codes[bit]), &mut stored);
-            out[bit] = self.decode_slot(slot, guess, &mut left, lists, || t2(bit), next_next);
-            let (slot, lists) = (SlotBits::of(codes[bit + 1]), &mut stored);
-            out[bit + 1] =
-                self.decode_slot(slot, guess, &mut right, lists, || t2(bit + 1), next_next);
+            left = chain_after(codes[bit], left, stored_words[bit]);
+            right = chain_after(codes[bit + 1], right, stored_words[bit + 1]);
+            chains[bit] = left;
+            chains[bit + 1] = right;
+        }
+        // Every slot's word from its code, its chain and the ring steps guessed (`v.p` as
+        // `v − 1`, `v.n.n` as `v + 2`, corrected below where a ring or the block ends), in
+        // a loop without a branch over the whole block (which the compiler vectorizes; the
+        // slots past the ring's end are not read).
+        for bit in 0..SLOTS {
+            let v = first + (bit >> 1) as u32;
+            out[bit] = word_of_code(codes[bit], chains[bit], (v.wrapping_sub(1), v + 2));
+        }
+        // The stored slots' words, with their WART flags.
+        let mut rest = stored;
+        while rest != 0 {
+            let bit = rest.trailing_zeros() as usize;
+            rest &= rest - 1;
+            let v = first + bit as u32 / 2;
+            let word = stored_words[bit];
+            let next_is_t2 = || (next_t2 >> bit) & 1 != 0;
+            let wart = self.stored_wart_given(word, next_is_t2, || ring.next_next(self, v));
+            out[bit] = word_of(word & VALUE, wart, p0 >> bit & 1 != 0);
         }
         // The vertices whose `v.p` or `v.n.n` may be another: a ring's first, a ring's last
         // or the one before it, the block's last. Only symbols 4 and 5 read them (a four
@@ -133,71 +166,33 @@ impl<W: Words> ZipperTables<W> {
         }
         2 * count
     }
-
-    /// One slot of [`decode_block`](Self::decode_block): its word, from its bits, `v.p` and
-    /// `v.n.n` as guessed (`ring_tips`; `exact_next_next` for a stored slot's implied wart),
-    /// its side's chain (updated) and the exception words and records taken before it in
-    /// the block (`stored`, updated).
-    #[inline(always)]
-    fn decode_slot(
-        &self,
-        bits: SlotBits,
-        (prev, next_next): (u32, u32),
-        chain: &mut u32,
-        (x, r): &mut (usize, usize),
-        next_is_t2: impl FnOnce() -> bool,
-        exact_next_next: impl FnOnce() -> u32,
-    ) -> u32 {
-        let s = bits.symbol;
-        if s >= EXCEPTION {
-            let irregular = s == IRREGULAR_SLOT;
-            let word = match irregular {
-                true => self.records.at(RECORD_WORDS * *r),
-                false => self.exceptions.at(*x),
-            };
-            (*r, *x) = (*r + irregular as usize, *x + !irregular as usize);
-            let tip = word & VALUE;
-            *chain = tip;
-            let wart = self.stored_wart_given(word, next_is_t2, exact_next_next);
-            return word_of(tip, wart, irregular);
-        }
-        // A delta (symbols 0–3, or a four), symbol 4 (`v.p`) or 5 (`v.n.n` or NULL), each
-        // selected by a mask.
-        let delta = mask_of((s < DELTAS) as u32 | bits.four);
-        // A four is symbol 5 read as the delta 4.
-        let step = s - bits.four;
-        *chain = chain.wrapping_sub(step & delta);
-        let rule_5 = select(mask_of(bits.null), NULL, next_next);
-        let ring_tip = select(mask_of(s & 1), rule_5, prev);
-        let tip = select(delta, *chain, ring_tip);
-        tip | WART & delta & mask_of(bits.wart)
-    }
 }
 
-/// What [`ZipperTables::decode_slot`] needs of a slot's bits in the block's masks.
-struct SlotBits {
-    symbol: u32,
-    /// Whether symbol 5 is a four here.
-    four: u32,
-    /// Whether a delta is a wart (`WART_DELTAS`, before a canonical T2).
-    wart: u32,
-    /// Whether symbol 5 reads NULL.
-    null: u32,
+/// A side's chain after a slot whose byte of codes (from [`slot_bytes`]: bits 0–2 the
+/// symbol, 3 a four, 4 a delta wart, 5 a NULL five) is `code`, from the chain `chain`
+/// before it: less its delta (symbols 0–3, or 4 for a four), or the tip of its stored word
+/// `stored` (symbols 6 and 7), or unchanged (symbols 4 and 5 of the ring rules).
+#[inline(always)]
+fn chain_after(code: u8, chain: u32, stored: u32) -> u32 {
+    let code = code as u32;
+    let (symbol, four) = (code & 7, code >> 3 & 1);
+    let delta = mask_of((symbol < DELTAS) as u32 | four);
+    let after = chain.wrapping_sub((symbol - four) & delta);
+    select(mask_of((symbol >= EXCEPTION) as u32), stored & VALUE, after)
 }
 
-impl SlotBits {
-    /// From a slot's byte of [`slot_bytes`] over the block's planes, fours, delta warts and
-    /// NULL fives.
-    #[inline(always)]
-    fn of(code: u8) -> SlotBits {
-        let code = code as u32;
-        SlotBits {
-            symbol: code & 7,
-            four: code >> 3 & 1,
-            wart: code >> 4 & 1,
-            null: code >> 5 & 1,
-        }
-    }
+/// The word of a slot that is not stored, from its byte of codes (see [`chain_after`]), its
+/// side's chain after it, and `v.p` and `v.n.n` as guessed: a delta's tip is the chain
+/// (with the WART flag of a delta wart), symbol 4's `v.p`, symbol 5's `v.n.n` or `NULL`.
+/// Each choice by a mask, not a branch.
+#[inline(always)]
+fn word_of_code(code: u8, chain: u32, (prev, next_next): (u32, u32)) -> u32 {
+    let code = code as u32;
+    let symbol = code & 7;
+    let delta = mask_of((symbol < DELTAS) as u32 | code >> 3 & 1);
+    let rule_5 = select(mask_of(code >> 5 & 1), NULL, next_next);
+    let ring_tip = select(mask_of(symbol & 1), rule_5, prev);
+    select(delta, chain, ring_tip) | WART & delta & mask_of(code >> 4 & 1)
 }
 
 /// The ring steps of the vertices of one block, `first .. end`: which of them end their
@@ -218,10 +213,14 @@ impl BlockRing {
             true => v + 1 == t.ring_vertices(),
             false => t.is_last(v),
         };
-        let mut lasts = 0u64;
-        for v in first..end {
-            lasts |= (is_last(v) as u64) << (v - first);
-        }
+        let lasts = match one_ring {
+            // The ring's one end, when in the block (`first` is at most `m_r − 1`).
+            true => {
+                let last = t.ring_vertices() - 1;
+                ((last < end) as u64) << (last - first).min(63)
+            }
+            false => (first..end).fold(0, |lasts, v| lasts | (is_last(v) as u64) << (v - first)),
+        };
         let first_starts = first == 0 || is_last(first - 1);
         BlockRing {
             first,
