@@ -258,6 +258,14 @@ pub trait LrLayout {
     fn tip_and_wart(&self, v: u32, side: usize) -> (u32, bool) {
         (self.tip(v, side), self.wart(v, side))
     }
+    /// [`tip`](Self::tip), [`wart`](Self::wart) and [`irregular`](Self::irregular) of slot
+    /// `(v, side)` together: a layout that decodes a slot's word (the Zipper's cursor) reads
+    /// it once.
+    #[inline(always)]
+    fn slot_fields(&self, v: u32, side: usize) -> (u32, bool, bool) {
+        let (tip, wart) = self.tip_and_wart(v, side);
+        (tip, wart, self.irregular(v, side))
+    }
     /// Whether the tip of right slot `v` is [`NULL`] (no right triangle: a boundary ring
     /// edge): a layout whose tips take decoding (the Zipper) tells it from less.
     #[inline(always)]
@@ -501,11 +509,13 @@ pub trait LrLayout {
                 self.across(v, side)
             };
         }
-        let second = (c >> 1 & 1) as usize;
-        if let Some(o) = self.stored_opposite(v, side, second) {
-            return o;
+        // The slot's fields read once; only an irregular slot stores opposites.
+        let (tip, wart, irregular) = self.slot_fields(v, side);
+        if irregular {
+            if let Some(o) = self.stored_opposite(v, side, (c >> 1 & 1) as usize) {
+                return o;
+            }
         }
-        let (tip, wart) = self.tip_and_wart(v, side);
         self.inferred_opposite_given(v, c & 7, tip, wart)
     }
 

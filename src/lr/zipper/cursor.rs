@@ -183,6 +183,22 @@ impl<W: Words> LrLayout for ZipperCursor<'_, W> {
         }
     }
     #[inline(always)]
+    fn slot_fields(&self, v: u32, side: usize) -> (u32, bool, bool) {
+        match self.cached(v, side) {
+            Some(word) => (word & VALUE, word & WART != 0, word & IRREGULAR != 0),
+            None => self.tables.slot_fields(v, side),
+        }
+    }
+    #[inline(always)]
+    fn redundant_given(&self, v: u32, side: usize, tip: u32) -> bool {
+        // Both flags from one word.
+        tip == self.ring_next_next(v)
+            && match self.cached(v, side) {
+                Some(word) => word & (WART | IRREGULAR) == 0,
+                None => self.tables.redundant_given(v, side, tip),
+            }
+    }
+    #[inline(always)]
     fn right_is_null(&self, v: u32) -> bool {
         match self.cached(v, RIGHT) {
             Some(word) => word & VALUE == NULL,
