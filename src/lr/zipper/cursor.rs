@@ -21,9 +21,11 @@ use crate::lr::tables::{LrLayout, IRREGULAR, NULL, RIGHT, VALUE, WART};
 use crate::words::Words;
 use std::cell::Cell;
 
-/// Blocks kept decoded, direct-mapped by the block's low bits: 256 blocks of 64 ring
-/// vertices (about 130 KiB) hold the rows a fan reaches on the scanned meshes.
-pub const CACHED_BLOCKS: usize = 256;
+/// Blocks kept decoded, direct-mapped by the block's low bits: 512 blocks of 64 ring
+/// vertices (256 KiB of words, allocated with the cursor) hold the ring rows a fan or a walk
+/// comes back to on the scanned meshes (256 decoded a third more blocks in bunny00's valence
+/// loop, evicted and read again).
+pub const CACHED_BLOCKS: usize = 512;
 
 /// The words of the blocks kept decoded, entry after entry.
 const CACHED_SLOTS: usize = CACHED_BLOCKS * BLOCK_SLOTS;
@@ -40,6 +42,10 @@ pub struct ZipperCursor<'a, W: Words> {
     /// block when partial are read from the tables, so that a read finds a word by its
     /// block's tag alone.
     whole_blocks: usize,
+    /// The tables' `m_r` and number of rings, which every ring step asks for: kept here,
+    /// where the compiler sees that no decoding changes them.
+    m_r: u32,
+    rings: usize,
     /// The block each entry holds decoded, `usize::MAX` for none: apart from the words, so
     /// that the check before every read looks at a small array that stays in the L1 cache
     /// (next to the words, it took a second cache line per read).
@@ -56,6 +62,8 @@ impl<W: Words> ZipperTables<W> {
         ZipperCursor {
             tables: self,
             whole_blocks: (self.ring_vertices() >> BLOCK_SHIFT) as usize,
+            m_r: self.ring_vertices(),
+            rings: self.ring_count(),
             tags: boxed(|| Cell::new(usize::MAX)),
             words: boxed(|| Cell::new(0)),
         }
@@ -120,7 +128,7 @@ impl<W: Words> ZipperCursor<'_, W> {
 impl<W: Words> LrLayout for ZipperCursor<'_, W> {
     #[inline]
     fn ring_vertices(&self) -> u32 {
-        self.tables.ring_vertices()
+        self.m_r
     }
     #[inline]
     fn vertex_count(&self) -> u32 {
@@ -132,7 +140,7 @@ impl<W: Words> LrLayout for ZipperCursor<'_, W> {
     }
     #[inline]
     fn ring_count(&self) -> usize {
-        self.tables.ring_count()
+        self.rings
     }
     #[inline]
     fn ring_start(&self, ring: usize) -> u32 {
