@@ -177,6 +177,22 @@ impl Words for Counting<'_> {
     }
 }
 
+/// The set bits of a `u128`, lowest first.
+pub(crate) struct Bits128(pub(crate) u128);
+
+impl Iterator for Bits128 {
+    type Item = usize;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<usize> {
+        (self.0 != 0).then(|| {
+            let bit = self.0.trailing_zeros() as usize;
+            self.0 &= self.0 - 1;
+            bit
+        })
+    }
+}
+
 /// The set bits of a mask, lowest first.
 pub(crate) struct BitsSet(pub(crate) u64);
 

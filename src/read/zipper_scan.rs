@@ -13,7 +13,7 @@ use crate::lr::zipper::{
     RECORD_WORDS, STATE_SHIFT, STORES_BOTH, STORES_FIRST, STORES_NONE, STORES_SECOND,
 };
 use crate::lr::{LrLayout, ZipperTables, VALUE, WART};
-use crate::words::BitsSet;
+use crate::words::{Bits128, BitsSet};
 use crate::words::{LeWords, Words};
 
 type Tables<'a> = ZipperTables<LeWords<'a>>;
@@ -21,22 +21,6 @@ type Tables<'a> = ZipperTables<LeWords<'a>>;
 /// A block's 128 symbols as bytes ([`slot_bytes`] of its planes).
 pub(super) fn block_symbols(slot: &Slot) -> [u8; 128] {
     slot_bytes(slot.p)
-}
-
-/// The set bits of a `u128`, lowest first.
-struct Bits128(u128);
-
-impl Iterator for Bits128 {
-    type Item = usize;
-
-    #[inline(always)]
-    fn next(&mut self) -> Option<usize> {
-        (self.0 != 0).then(|| {
-            let bit = self.0.trailing_zeros() as usize;
-            self.0 &= self.0 - 1;
-            bit
-        })
-    }
 }
 
 /// Whether an exception word or a record's first word holds only a WART flag and a vertex

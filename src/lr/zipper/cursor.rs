@@ -37,11 +37,6 @@ const CACHED_SLOTS: usize = CACHED_BLOCKS * BLOCK_SLOTS;
 #[derive(Debug)]
 pub struct ZipperCursor<'a, W: Words> {
     tables: &'a ZipperTables<W>,
-    /// The blocks of 64 ring vertices all below `m_r`, the ones decoded: a vertex past the
-    /// ring (which only a file that is not semantically valid asks for) and the ring's last
-    /// block when partial are read from the tables, so that a read finds a word by its
-    /// block's tag alone.
-    whole_blocks: usize,
     /// The tables' `m_r` and number of rings, which every ring step asks for: kept here,
     /// where the compiler sees that no decoding changes them.
     m_r: u32,
@@ -61,7 +56,6 @@ impl<W: Words> ZipperTables<W> {
     pub fn cursor(&self) -> ZipperCursor<'_, W> {
         ZipperCursor {
             tables: self,
-            whole_blocks: (self.ring_vertices() >> BLOCK_SHIFT) as usize,
             m_r: self.ring_vertices(),
             rings: self.ring_count(),
             tags: boxed(|| Cell::new(usize::MAX)),
@@ -96,14 +90,17 @@ impl<W: Words> ZipperCursor<'_, W> {
 
     /// The word of slot `(v, side)` (its tip with the `WART` and `IRREGULAR` flags) from its
     /// block decoded in the cache, decoding the block first if its entry holds another;
-    /// `None` for a slot of a block that is not whole (see `whole_blocks`), whose fields the
-    /// caller reads from the tables as they read them alone.
+    /// `None` for a slot of a block that is not whole (of 64 ring vertices all below `m_r`),
+    /// whose fields the caller reads from the tables as they read them alone: a vertex past
+    /// the ring (which only a file that is not semantically valid asks for) and the ring's
+    /// last block when partial never have a word, so that a read finds one by its block's
+    /// tag alone.
     #[inline(always)]
     fn cached(&self, v: u32, side: usize) -> Option<u32> {
         let block = (v >> BLOCK_SHIFT) as usize;
         let entry = block % CACHED_BLOCKS;
         if self.tags[entry].get() != block {
-            if block >= self.whole_blocks {
+            if block >= (self.m_r >> BLOCK_SHIFT) as usize {
                 return None;
             }
             self.decode(block, entry);

@@ -9,7 +9,7 @@ use super::tables::ZipperTables;
 use super::{BLOCK_SHIFT, BLOCK_SLOTS as SLOTS, DELTAS, EXCEPTION, PREVIOUS, RECORD_WORDS};
 use crate::lr::read_back::{push_slot, with_slots};
 use crate::lr::tables::{LrLayout, LrTables, IRREGULAR, LEFT, NULL, RIGHT, VALUE, WART};
-use crate::words::Words;
+use crate::words::{Bits128, BitsSet, Words};
 
 impl<W: Words> ZipperTables<W> {
     /// The standard LR tables whose every answer (tips, WART and IRREGULAR flags, the
@@ -78,11 +78,8 @@ impl<W: Words> ZipperTables<W> {
         // planes two bits on where `v.n` is `v + 1` in the block, else from the tables.
         let inside = ring.inside_slots();
         let mut next_t2 = (!p0 & !p1 & p2) >> 2 & inside;
-        let mut outside = below(2 * count) & !inside;
-        while outside != 0 {
-            let bit = outside.trailing_zeros();
-            outside &= outside - 1;
-            let (v, side) = (first + bit / 2, (bit % 2) as usize);
+        for bit in Bits128(below(2 * count) & !inside) {
+            let (v, side) = (first + bit as u32 / 2, bit % 2);
             if self.symbol(ring.next(self, v), side) == PREVIOUS {
                 next_t2 |= 1 << bit;
             }
@@ -101,10 +98,7 @@ impl<W: Words> ZipperTables<W> {
         let stored = p1 & p2 & below(2 * count);
         let mut stored_words = [0u32; SLOTS];
         let (mut x, mut r) = (self.before_block(block, 0), self.before_block(block, 1));
-        let mut rest = stored;
-        while rest != 0 {
-            let bit = rest.trailing_zeros() as usize;
-            rest &= rest - 1;
+        for bit in Bits128(stored) {
             stored_words[bit] = match p0 >> bit & 1 != 0 {
                 true => {
                     r += 1;
@@ -135,10 +129,7 @@ impl<W: Words> ZipperTables<W> {
             out[bit] = word_of_code(codes[bit], chains[bit], (v.wrapping_sub(1), v + 2));
         }
         // The stored slots' words, with their WART flags.
-        let mut rest = stored;
-        while rest != 0 {
-            let bit = rest.trailing_zeros() as usize;
-            rest &= rest - 1;
+        for bit in Bits128(stored) {
             let v = first + bit as u32 / 2;
             let word = stored_words[bit];
             let next_is_t2 = || (next_t2 >> bit) & 1 != 0;
@@ -151,11 +142,8 @@ impl<W: Words> ZipperTables<W> {
         let steps =
             below(count) as u64 & (ring.firsts | ring.lasts | ring.lasts >> 1) | 1 << (count - 1);
         let (symbol_4, fives) = (!p0 & !p1 & p2, p0 & !p1 & p2 & !fours & !null_5);
-        let mut steps = steps;
-        while steps != 0 {
-            let i = steps.trailing_zeros() as usize;
-            steps &= steps - 1;
-            let v = first + i as u32;
+        for i in BitsSet(steps) {
+            let (v, i) = (first + i, i as usize);
             for bit in [2 * i, 2 * i + 1] {
                 if symbol_4 >> bit & 1 != 0 {
                     out[bit] = ring.prev(self, v);
