@@ -351,6 +351,33 @@ impl<W: Words, U: Units> LrLayout for CompactTables<W, U> {
     }
 
     #[inline(always)]
+    fn tip_and_wart(&self, v: u32, side: usize) -> (u32, bool) {
+        // A plain pair (most of them) answers both from one test of its configuration.
+        let p = self.pair(v);
+        if p >> 30 != EXTENDED {
+            let base = || self.base(v, side).unwrap_or(0);
+            let tip = plain::tip(v, p >> (15 * side), self.tip_bases, base);
+            return (tip, p >> 30 == WART_LEFT + side as u32);
+        }
+        (self.tip(v, side), p & X_WART[side] != 0)
+    }
+
+    #[inline(always)]
+    fn slot_fields(&self, v: u32, side: usize) -> (u32, bool, bool) {
+        let p = self.pair(v);
+        if p >> 30 != EXTENDED {
+            let base = || self.base(v, side).unwrap_or(0);
+            let tip = plain::tip(v, p >> (15 * side), self.tip_bases, base);
+            return (tip, p >> 30 == WART_LEFT + side as u32, false);
+        }
+        (
+            self.tip(v, side),
+            p & X_WART[side] != 0,
+            p & X_IRREGULAR[side] != 0,
+        )
+    }
+
+    #[inline(always)]
     fn stored_opposite(&self, v: u32, side: usize, second: usize) -> Option<u32> {
         let p = self.pair(v);
         if p >> 30 != EXTENDED || p & X_IRREGULAR[side] == 0 {
