@@ -43,6 +43,16 @@ pub trait CornerOps {
     /// `v.c`: a corner of vertex `v`, from which [`CornerOps::swing`] visits all of `v`'s
     /// corners; `None` for a vertex without triangles.
     fn vertex_corner(&self, v: Vertex) -> Option<Corner>;
+    /// Some corner of vertex `v`, not necessarily `v.c`; `None` for a vertex without
+    /// triangles. Walks that go round a fan both ways from where they start ([`valence`],
+    /// [`vertex_normal`]) need no more, and an LR layout without a list of open fans finds
+    /// `v.c` of a vertex next to a boundary off the ring only by walking the fan back to its
+    /// start (which made those walks twice as long on every vertex of such a mesh). By
+    /// default `v.c`.
+    #[inline(always)]
+    fn any_corner(&self, v: Vertex) -> Option<Corner> {
+        self.vertex_corner(v)
+    }
     /// `t.c`: the first corner of triangle `t`.
     fn triangle_corner(&self, t: Triangle) -> Corner;
 
@@ -148,7 +158,12 @@ impl<M: CornerOps + ?Sized> Iterator for Star<'_, M> {
 /// The corners of vertex `v`, each once: swinging from `v.c`, and when the fan is open and
 /// `v.c` is not at its end, unswinging from `v.c` for the rest.
 pub fn star<M: CornerOps + ?Sized>(mesh: &M, v: Vertex) -> Star<'_, M> {
-    let start = mesh.vertex_corner(v);
+    star_from(mesh, mesh.vertex_corner(v))
+}
+
+/// The corners around the vertex of `start` (none for `None`), each once, swinging from
+/// `start` and then, when the fan is open, unswinging from it for the rest.
+fn star_from<M: CornerOps + ?Sized>(mesh: &M, start: Option<Corner>) -> Star<'_, M> {
     Star {
         mesh,
         start: start.unwrap_or(Corner(0)),
@@ -160,7 +175,7 @@ pub fn star<M: CornerOps + ?Sized>(mesh: &M, v: Vertex) -> Star<'_, M> {
 
 /// Number of edges at `v`: its corner count, plus one when its fan is open.
 pub fn valence<M: CornerOps + ?Sized>(mesh: &M, v: Vertex) -> u32 {
-    let Some(start) = mesh.vertex_corner(v) else {
+    let Some(start) = mesh.any_corner(v) else {
         return 0;
     };
     let limit = walk_limit(mesh);
@@ -213,7 +228,7 @@ pub fn vertex_normal<M: CornerOps + ?Sized>(
 ) -> [f32; 3] {
     let p = positions[v.idx()];
     let mut sum = [0.0f32; 3];
-    for c in star(mesh, v) {
+    for c in star_from(mesh, mesh.any_corner(v)) {
         let a = sub(positions[mesh.vertex(mesh.next(c)).idx()], p);
         let b = sub(positions[mesh.vertex(mesh.prev(c)).idx()], p);
         let n = cross(a, b);

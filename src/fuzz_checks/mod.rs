@@ -362,6 +362,9 @@ fn ops_in_range<M: CornerOps>(
         if let Some(c) = mesh.vertex_corner(v) {
             assert!(is_corner(c));
         }
+        if let Some(c) = mesh.any_corner(v) {
+            assert!(is_corner(c));
+        }
         assert!(ops::star(mesh, v).all(&is_corner));
         ops::valence(mesh, v);
         ops::vertex_normal(mesh, positions, v);
@@ -416,6 +419,9 @@ fn walk(file: &crate::Container) {
     for v in mesh.vertices() {
         let star: Vec<_> = ops::star(mesh, v).collect();
         assert!(star.iter().all(|&c| mesh.vertex(c) == v));
+        // Valence and normals start from any corner: one of the star's.
+        assert_eq!(mesh.any_corner(v).is_some(), !star.is_empty());
+        assert!(mesh.any_corner(v).is_none_or(|c| star.contains(&c)));
         corners_seen += star.len();
         ops::valence(mesh, v);
         ops::vertex_normal(mesh, &positions, v);
@@ -430,6 +436,7 @@ fn walk(file: &crate::Container) {
         }
         for v in tables.vertices() {
             assert_eq!(cursor.vertex_corner(v), tables.vertex_corner(v));
+            assert_eq!(cursor.any_corner(v), tables.any_corner(v));
         }
     }
     let plane = Plane {

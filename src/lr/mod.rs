@@ -389,6 +389,10 @@ impl CornerOps for Lr {
         self.tables.vertex_corner(v)
     }
     #[inline(always)]
+    fn any_corner(&self, v: Vertex) -> Option<Corner> {
+        self.tables.any_corner(v)
+    }
+    #[inline(always)]
     fn triangle_corner(&self, t: Triangle) -> Corner {
         self.tables.triangle_corner(t)
     }

@@ -661,6 +661,17 @@ impl<T: LrLayout> CornerOps for T {
         Some(crate::ops::fan_start(self, c))
     }
 
+    /// Corner 0 of `v`'s left slot (made canonical), which every ring vertex has: no look at
+    /// boundaries or walk back to an open fan's start, as `v.c` needs.
+    #[inline(always)]
+    fn any_corner(&self, v: Vertex) -> Option<Corner> {
+        let m_r = self.ring_vertices();
+        if v.0 >= m_r {
+            return Corner::from_stored(self.isolated_corner(v.0 - m_r));
+        }
+        Some(Corner(self.canonical(8 * v.0)))
+    }
+
     #[inline(always)]
     fn triangle_corner(&self, t: Triangle) -> Corner {
         Corner(4 * t.0)

@@ -148,6 +148,10 @@ impl CornerOps for Connectivity<'_> {
         assert!(v.0 < self.vertex_id_bound(), "vertex {v} out of range");
         each!(self, t => t.vertex_corner(v))
     }
+    fn any_corner(&self, v: Vertex) -> Option<Corner> {
+        assert!(v.0 < self.vertex_id_bound(), "vertex {v} out of range");
+        each!(self, t => t.any_corner(v))
+    }
     fn triangle_corner(&self, t: Triangle) -> Corner {
         each!(self, x => x.triangle_corner(t))
     }

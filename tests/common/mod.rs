@@ -161,6 +161,7 @@ pub fn check_against_table<M: CornerOps>(
     for v in rep.vertices() {
         vertices += 1;
         let Some(c) = rep.vertex_corner(v) else {
+            assert_eq!(rep.any_corner(v), None, "a corner of {v:?} without v.c");
             continue;
         };
         let tc = table_corner[&key(c)];
@@ -168,6 +169,12 @@ pub fn check_against_table<M: CornerOps>(
         let theirs: BTreeSet<(u32, u32)> =
             ops::star(table, table.vertex(tc)).map(table_key).collect();
         assert_eq!(ours, theirs, "star of {v:?}");
+        // Valence and normals walk from any corner of `v`: it must be one of its star.
+        let any = rep.any_corner(v).map(&key);
+        assert!(
+            any.is_some_and(|k| ours.contains(&k)),
+            "any_corner of {v:?} is not in its star"
+        );
         assert_eq!(
             ops::valence(rep, v),
             ops::valence(table, table.vertex(tc)),
