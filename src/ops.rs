@@ -221,6 +221,11 @@ fn dot(a: [f32; 3], b: [f32; 3]) -> f32 {
 /// The area-weighted normal of `v`: the normalised sum of the cross products of the triangles
 /// around it. `positions` is indexed by the representation's vertex ids. Zero for a vertex
 /// without triangles or with a degenerate star.
+///
+/// Each neighbour is read once: going round with swing, a triangle's next vertex is the one
+/// before's previous vertex (they share that edge), and going back with unswing, its previous
+/// vertex is the next vertex of the one after. The triangles are summed in the order of a
+/// star from [`CornerOps::any_corner`].
 pub fn vertex_normal<M: CornerOps + ?Sized>(
     mesh: &M,
     positions: &[[f32; 3]],
@@ -228,11 +233,34 @@ pub fn vertex_normal<M: CornerOps + ?Sized>(
 ) -> [f32; 3] {
     let p = positions[v.idx()];
     let mut sum = [0.0f32; 3];
-    for c in star_from(mesh, mesh.any_corner(v)) {
-        let a = sub(positions[mesh.vertex(mesh.next(c)).idx()], p);
-        let b = sub(positions[mesh.vertex(mesh.prev(c)).idx()], p);
-        let n = cross(a, b);
+    let mut add = |a: Vertex, b: Vertex| {
+        let n = cross(sub(positions[a.idx()], p), sub(positions[b.idx()], p));
         sum = [sum[0] + n[0], sum[1] + n[1], sum[2] + n[2]];
+    };
+    if let Some(start) = mesh.any_corner(v) {
+        let limit = walk_limit(mesh);
+        let first = mesh.vertex(mesh.next(start));
+        let (mut c, mut a, mut count) = (start, first, 0);
+        let open = loop {
+            let b = mesh.vertex(mesh.prev(c));
+            add(a, b);
+            count += 1;
+            match mesh.swing(c) {
+                Some(d) if d == start => break false,
+                _ if count >= limit => break false,
+                Some(d) => (c, a) = (d, b),
+                None => break true,
+            }
+        };
+        // An open fan: the triangles before the start, walking back.
+        let (mut c, mut b) = (start, first);
+        while open && count < limit {
+            let Some(d) = mesh.unswing(c) else { break };
+            let a = mesh.vertex(mesh.next(d));
+            add(a, b);
+            count += 1;
+            (c, b) = (d, a);
+        }
     }
     let len = dot(sum, sum).sqrt();
     if len > 0.0 {
