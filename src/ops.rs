@@ -48,9 +48,7 @@ pub trait CornerOps {
     /// [`vertex_normal`]) need no more, and an LR layout without a list of open fans finds
     /// `v.c` of a vertex next to a boundary off the ring only by walking the fan back to its
     /// start (which made those walks twice as long on every vertex of such a mesh). By
-    /// default `v.c`. On a file whose vertex has two fans (the format's rules allow it; no
-    /// writer of this crate makes one, it splits such a vertex into copies) the corner may
-    /// be in the other fan than `v.c`'s.
+    /// default `v.c`.
     #[inline(always)]
     fn any_corner(&self, v: Vertex) -> Option<Corner> {
         self.vertex_corner(v)

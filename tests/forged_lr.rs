@@ -592,6 +592,41 @@ fn v38_vertex_corner_starts_its_fan() {
     }
 }
 
+/// [V38] one fan per vertex. The `operators` fuzz target's base 148 (an LR of a torus with
+/// holes and defects) with one 16-bit unit of `LRTB` copied over another: well formed, every
+/// other rule kept, and a vertex whose corners form two fans (`v.c` starts one); it verified
+/// before [V38] asked for one fan (`corpus/fuzz/regressions/operators/lr_vertex_with_two_fans`).
+#[test]
+fn v38_one_fan_per_vertex() {
+    let bytes = lrmesh::fuzz_checks::forged_base(148);
+    let bad = forge(&bytes, Tag::LRTB, |p| {
+        let units = p.len() / 2;
+        let (from, to) = (1 % units, 256 % units);
+        let unit = [p[2 * from], p[2 * from + 1]];
+        p[2 * to..2 * to + 2].copy_from_slice(&unit);
+    });
+    let view = open(&bad, &Limits::default()).unwrap();
+    let lr = view.lr().unwrap();
+    let mut corners = vec![0usize; lr.vertex_id_bound() as usize];
+    for c in lr.corners() {
+        corners[lr.vertex(c).idx()] += 1;
+    }
+    let v = lr
+        .vertices()
+        .find(|&v| lrmesh::ops::star(lr, v).count() != corners[v.idx()])
+        .expect("a vertex with two fans");
+    assert!(v.0 < lr.ring_vertices());
+    breaks(
+        &bad,
+        38,
+        "LRTB",
+        lrtb_at(&bytes, "LR", 2 * v.idx()),
+        "more than one fan",
+    );
+    // The same base as written verifies.
+    lrmesh::read::open_verified(&bytes, &Limits::default()).unwrap();
+}
+
 /// `Container::verify` on a container opened as well formed: the semantic rules checked
 /// later, with the error `open_verified` gives; a valid file verifies and says so.
 #[test]

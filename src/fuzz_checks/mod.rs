@@ -419,16 +419,16 @@ fn walk(file: &crate::Container) {
     for v in mesh.vertices() {
         let star: Vec<_> = ops::star(mesh, v).collect();
         assert!(star.iter().all(|&c| mesh.vertex(c) == v));
-        // Valence and normals start from any corner of `v`. Not necessarily one of the
-        // star's: the rules let a vertex have two fans (`v.c` starts one of them; no writer
-        // makes such a file, `regressions/operators/lr_vertex_with_two_fans` is one).
+        // Valence and normals start from any corner of `v`: one of the star's, the
+        // vertex having one fan ([V38]).
         assert_eq!(mesh.any_corner(v).is_some(), !star.is_empty());
-        assert!(mesh.any_corner(v).is_none_or(|c| mesh.vertex(c) == v));
+        assert!(mesh.any_corner(v).is_none_or(|c| star.contains(&c)));
         corners_seen += star.len();
         ops::valence(mesh, v);
         ops::vertex_normal(mesh, &positions, v);
     }
-    assert!(corners_seen <= mesh.corners().count());
+    // One fan per vertex ([V38]): the stars meet every corner.
+    assert_eq!(corners_seen, mesh.corners().count());
     if let Some(tables) = file.zipper() {
         // A cursor answers as its tables do.
         let cursor = tables.cursor();

@@ -450,28 +450,26 @@ pub(super) fn verify_read_back<T: LrLayout>(
     Ok(lr.boundaries_on_ring)
 }
 
-/// [V23] (strips: [V32]) `v.c.v = v` and [V38] `v.c` is `NONE` exactly for a vertex no triangle uses, and
-/// starts the vertex's fan when the fan is open. Needs [V22] first, so that fans are chains
-/// or cycles.
+/// [V23] (strips: [V32]) `v.c.v = v` and [V38] `v.c` is `NONE` exactly for a vertex no triangle uses,
+/// starts the vertex's fan when the fan is open, and the vertex has one fan: the walk from
+/// `v.c` meets all its corners. Needs [V22] first: swing is injective and keeps to the
+/// vertex, so the walk forward from `v.c` comes back to it (a closed fan) or ends (an open
+/// one, then walked back from `v.c` too), each corner once.
 pub(super) fn check_vertex_corners<M: CornerOps>(
     mesh: &M,
     corner_rule: Rule,
     err: impl Fn(u32, Rule, String) -> Error,
 ) -> Result<()> {
-    let n = mesh.vertex_id_bound() as usize;
-    // 1: used; 2: its fan is open.
-    let mut marks = vec![0u8; n];
+    let mut corners = vec![0u32; mesh.vertex_id_bound() as usize];
     for c in mesh.corners() {
-        let v = mesh.vertex(c).idx();
-        marks[v] |= 1;
-        if mesh.unswing(c).is_none() {
-            marks[v] |= 2;
-        }
+        corners[mesh.vertex(c).idx()] += 1;
     }
+    // More steps than corners: swing does not form fans (only without [V22]).
+    let limit = 3 * mesh.triangle_id_bound() as usize;
     for v in mesh.vertices() {
-        let (used, open) = (marks[v.idx()] & 1 != 0, marks[v.idx()] & 2 != 0);
+        let count = corners[v.idx()] as usize;
         let Some(c) = mesh.vertex_corner(v) else {
-            if used {
+            if count != 0 {
                 return Err(err(
                     v.0,
                     Rule(38),
@@ -490,11 +488,30 @@ pub(super) fn check_vertex_corners<M: CornerOps>(
                 ),
             ));
         }
+        let (mut fan, mut d) = (1, c);
+        let open = loop {
+            match mesh.swing(d) {
+                Some(e) if e == c => break false,
+                Some(_) if fan > limit => break false,
+                Some(e) => (fan, d) = (fan + 1, e),
+                None => break true,
+            }
+        };
         if open && mesh.unswing(c).is_some() {
             return Err(err(
                 v.0,
                 Rule(38),
                 format!("corner {c} of vertex {v} does not start its open fan"),
+            ));
+        }
+        if fan != count {
+            return Err(err(
+                v.0,
+                Rule(38),
+                format!(
+                    "vertex {v} has {count} corners but the fan from its corner {c} has \
+                     {fan}: more than one fan"
+                ),
             ));
         }
     }
