@@ -9,23 +9,27 @@ use super::record;
 use crate::ids::Triangle;
 use crate::ops::{self, CornerOps, Plane};
 
-/// Sixteen planes across the bounding box of `positions` (slightly tilted from the third
-/// axis), each with a triangle of `mesh` it cuts: the starts of the contour walks. The planes
-/// depend on the positions only, so every representation walks the same contours.
+/// Sixteen parallel planes (slightly tilted from the third axis) spread evenly across the
+/// positions' extent along their normal, each with a triangle of `mesh` it cuts: the starts
+/// of the contour walks. The planes depend on the positions only, so every representation
+/// walks the same contours. (Spread along the third coordinate alone, the tilted planes
+/// missed every triangle of a mesh far from the origin, such as polygon_mesh, whose contour
+/// loop then timed nothing.)
 pub fn contour_starts<M: CornerOps>(mesh: &M, positions: &[[f32; 3]]) -> Vec<(Plane, Triangle)> {
+    let normal = [0.05, 0.02, 1.0];
+    let along = |p: &[f32; 3]| normal[0] * p[0] + normal[1] * p[1] + normal[2] * p[2];
     let (lo, hi) = positions
         .iter()
-        .filter(|p| p[2].is_finite())
-        .fold((f32::MAX, f32::MIN), |(lo, hi), p| {
-            (lo.min(p[2]), hi.max(p[2]))
-        });
+        .map(along)
+        .filter(|d| d.is_finite())
+        .fold((f32::MAX, f32::MIN), |(lo, hi), d| (lo.min(d), hi.max(d)));
     if lo > hi {
         return Vec::new();
     }
     (0..16)
         .filter_map(|k| {
             let plane = Plane {
-                normal: [0.05, 0.02, 1.0],
+                normal,
                 offset: lo + (hi - lo) * (k as f32 + 0.5) / 16.0,
             };
             let t = mesh.triangles().find(|&t| {
