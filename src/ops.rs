@@ -158,12 +158,7 @@ impl<M: CornerOps + ?Sized> Iterator for Star<'_, M> {
 /// The corners of vertex `v`, each once: swinging from `v.c`, and when the fan is open and
 /// `v.c` is not at its end, unswinging from `v.c` for the rest.
 pub fn star<M: CornerOps + ?Sized>(mesh: &M, v: Vertex) -> Star<'_, M> {
-    star_from(mesh, mesh.vertex_corner(v))
-}
-
-/// The corners around the vertex of `start` (none for `None`), each once, swinging from
-/// `start` and then, when the fan is open, unswinging from it for the rest.
-fn star_from<M: CornerOps + ?Sized>(mesh: &M, start: Option<Corner>) -> Star<'_, M> {
+    let start = mesh.vertex_corner(v);
     Star {
         mesh,
         start: start.unwrap_or(Corner(0)),

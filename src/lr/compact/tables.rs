@@ -352,18 +352,14 @@ impl<W: Words, U: Units> LrLayout for CompactTables<W, U> {
 
     #[inline(always)]
     fn tip_and_wart(&self, v: u32, side: usize) -> (u32, bool) {
-        // A plain pair (most of them) answers both from one test of its configuration.
-        let p = self.pair(v);
-        if p >> 30 != EXTENDED {
-            let base = || self.base(v, side).unwrap_or(0);
-            let tip = plain::tip(v, p >> (15 * side), self.tip_bases, base);
-            return (tip, p >> 30 == WART_LEFT + side as u32);
-        }
-        (self.tip(v, side), p & X_WART[side] != 0)
+        let (tip, wart, _) = self.slot_fields(v, side);
+        (tip, wart)
     }
 
     #[inline(always)]
     fn slot_fields(&self, v: u32, side: usize) -> (u32, bool, bool) {
+        // A plain pair (most of them) answers every field from one test of its
+        // configuration.
         let p = self.pair(v);
         if p >> 30 != EXTENDED {
             let base = || self.base(v, side).unwrap_or(0);
